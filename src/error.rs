@@ -1,0 +1,78 @@
+//! One error type for the whole crate.
+//!
+//! Every variant says *what* went wrong in words a user can act on: invalid
+//! input names the field path and the offending value, a solver failure
+//! carries its full iteration history.
+
+use crate::solver::history::History;
+
+/// Errors raised anywhere in the pipeline geometry → space → assembly →
+/// contact → solver → report.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A user-provided value is out of its admissible range.
+    #[error("invalid input: `{field}` = {value}: {reason}")]
+    InvalidInput {
+        field: String,
+        value: String,
+        reason: String,
+    },
+    /// A geometric query failed (projection, degenerate Jacobian, ...).
+    #[error("geometry: {0}")]
+    Geometry(String),
+    /// A linear system could not be factorised.
+    #[error("singular kernel: {0}")]
+    Singular(String),
+    /// Every potential contact point is open and the secant matrix lost the
+    /// rigid-body support that contact provided.
+    #[error("active set empty: the body floats ({0})")]
+    Floating(String),
+    /// The nonlinear iteration stopped without meeting its tolerances.
+    #[error("{reason} after {} iterations (last relative residual {:.3e})", history.len(), history.last_relative_residual())]
+    NotConverged { reason: String, history: History },
+    /// File output failed.
+    #[error("i/o on `{path}`: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidInput`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        Error::InvalidInput {
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// A short machine-readable tag, used by the stability atlas.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Error::InvalidInput { .. } => "invalid_input",
+            Error::Geometry(_) => "geometry",
+            Error::Singular(_) => "singular_kernel",
+            Error::Floating(_) => "floating_body",
+            Error::NotConverged { .. } => "not_converged",
+            Error::Io { .. } => "io",
+        }
+    }
+}
+
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Checks that `value` is finite, naming `field` otherwise.
+pub fn finite(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(field, value, "must be a finite number"))
+    }
+}

@@ -1,0 +1,19 @@
+//! Isogeometric frictionless contact with Nitsche's method, solved by a
+//! corrected BFGS iteration: a literate companion to Hu (2021).
+//!
+//! Data flows one way: [`nurbs`]/[`geometry`] → [`space`] → [`assembly`] →
+//! [`contact`] → [`solver`] → [`report`].
+
+pub mod assembly;
+pub mod dofs;
+pub mod error;
+pub mod geometry;
+pub mod linsolve;
+pub mod material;
+pub mod nurbs;
+pub mod quadrature;
+pub mod report;
+pub mod solver;
+pub mod space;
+
+pub use error::{Error, Result};

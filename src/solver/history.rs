@@ -1,0 +1,107 @@
+//! The iteration record kept by every nonlinear solver.
+
+use std::fmt;
+
+/// Something notable that happened during one iteration.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Event {
+    /// The BFGS kernel was replaced by the secant matrix (18) and refactorised.
+    Correction,
+    /// A BFGS pair was dropped because yᵀs was not safely positive.
+    SkippedUpdate { curvature: f64 },
+    /// The line search halved the step this many times.
+    LineSearchCuts(usize),
+    /// The active set was empty, so the kernel kept a stabilised tied term.
+    FloatingGuard,
+}
+
+impl fmt::Display for Event {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Event::Correction => write!(f, "correction"),
+            Event::SkippedUpdate { curvature } => {
+                write!(f, "skipped update (yᵀs = {curvature:.2e})")
+            }
+            Event::LineSearchCuts(n) => write!(f, "line search ×{n}"),
+            Event::FloatingGuard => write!(f, "floating guard"),
+        }
+    }
+}
+
+/// One row of the iteration table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Iteration {
+    /// 1-based iteration number.
+    pub iteration: usize,
+    /// ‖R(u_k)‖₂ after the update.
+    pub residual: f64,
+    /// ‖R(u_k)‖ / ‖R(u_0)‖.
+    pub relative_residual: f64,
+    /// ‖Δu‖₂ of the update.
+    pub update: f64,
+    /// The displacement component of largest magnitude (signed).
+    pub max_displacement: f64,
+    /// Number of contact quadrature points with P ≤ 0.
+    pub active_points: usize,
+    pub events: Vec<Event>,
+}
+
+/// The whole record of a solve.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct History {
+    /// ‖R(u_0)‖, the reference for relative residuals.
+    pub initial_residual: f64,
+    pub rows: Vec<Iteration>,
+}
+
+impl History {
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    pub fn last_relative_residual(&self) -> f64 {
+        self.rows.last().map_or(1.0, |r| r.relative_residual)
+    }
+
+    /// Number of iterations that carry `pred`.
+    pub fn count(&self, pred: impl Fn(&Event) -> bool) -> usize {
+        self.rows
+            .iter()
+            .flat_map(|r| r.events.iter())
+            .filter(|e| pred(e))
+            .count()
+    }
+
+    pub fn corrections(&self) -> usize {
+        self.count(|e| *e == Event::Correction)
+    }
+
+    pub fn skipped_updates(&self) -> usize {
+        self.count(|e| matches!(e, Event::SkippedUpdate { .. }))
+    }
+
+    /// The table as CSV, one row per iteration.
+    pub fn to_csv(&self) -> String {
+        let mut s = String::from(
+            "iteration,residual,relative_residual,update,max_displacement,active_points,events\n",
+        );
+        for r in &self.rows {
+            let ev: Vec<String> = r.events.iter().map(|e| e.to_string()).collect();
+            s.push_str(&format!(
+                "{},{:.6e},{:.6e},{:.6e},{:.9e},{},{}\n",
+                r.iteration,
+                r.residual,
+                r.relative_residual,
+                r.update,
+                r.max_displacement,
+                r.active_points,
+                ev.join("; ")
+            ));
+        }
+        s
+    }
+}

@@ -1,0 +1,218 @@
+//! The discrete space of one patch: elements (non-empty knot-span
+//! products), quadrature, boundary elements, and shape functions mapped to
+//! physical coordinates — Eq. (2), u(ξ,η) = Σ_A R_A(ξ,η) d_A.
+
+use crate::error::{Error, Result};
+use crate::nurbs::{NurbsPatch, Side};
+use crate::quadrature;
+
+/// One element: the product of a non-empty ξ span and a non-empty η span.
+#[derive(Clone, Debug)]
+pub struct Element {
+    /// Knot-span indices (as [`crate::nurbs::KnotVector::find_span`] returns).
+    pub spans: [usize; 2],
+    /// Parametric extent [ξ_a, ξ_b] and [η_a, η_b].
+    pub range: [[f64; 2]; 2],
+    /// Control points supported on the element, ξ index fastest.
+    pub cps: Vec<usize>,
+}
+
+/// Shape functions at one point, in the element's local order.
+#[derive(Clone, Debug)]
+pub struct Shape {
+    pub x: [f64; 2],
+    pub r: Vec<f64>,
+    /// ∂R/∂x and ∂R/∂y.
+    pub grad: Vec<[f64; 2]>,
+    pub det_j: f64,
+}
+
+/// A quadrature point of an element, with its shape functions and the
+/// weight already multiplied by det J.
+#[derive(Clone, Debug)]
+pub struct QuadPoint {
+    pub param: [f64; 2],
+    pub weight: f64,
+    pub shape: Shape,
+}
+
+/// An element side lying on a patch side.
+#[derive(Clone, Debug)]
+pub struct BoundaryElement {
+    pub side: Side,
+    /// Index into [`Space::elements`].
+    pub element: usize,
+    /// Extent of the side parameter on this element.
+    pub range: [f64; 2],
+    /// Physical length of the element side (the h of Eq. 11).
+    pub length: f64,
+}
+
+/// The space spanned by the NURBS basis of one patch.
+#[derive(Clone, Debug)]
+pub struct Space {
+    pub patch: NurbsPatch,
+    pub elements: Vec<Element>,
+    /// Gauss points per direction.
+    pub quad_order: usize,
+}
+
+impl Space {
+    /// Builds the elements; `quad_order` defaults to p + 1 Gauss points per
+    /// direction (exact for the polynomial part of the stiffness integrand
+    /// on affine maps, and the usual choice for NURBS).
+    pub fn new(patch: NurbsPatch, quad_order: Option<usize>) -> Result<Self> {
+        let pmax = patch.degree()[0].max(patch.degree()[1]);
+        let quad_order = quad_order.unwrap_or(pmax + 1);
+        if quad_order == 0 || quad_order > 30 {
+            return Err(Error::invalid(
+                "quadrature_order",
+                quad_order,
+                "must lie in 1..=30",
+            ));
+        }
+        let [p, q] = patch.degree();
+        let n0 = patch.n()[0];
+        let mut elements = Vec::new();
+        for (sy, y0, y1) in patch.knots[1].spans() {
+            for (sx, x0, x1) in patch.knots[0].spans() {
+                let mut cps = Vec::with_capacity((p + 1) * (q + 1));
+                for j in sy - q..=sy {
+                    for i in sx - p..=sx {
+                        cps.push(i + j * n0);
+                    }
+                }
+                elements.push(Element {
+                    spans: [sx, sy],
+                    range: [[x0, x1], [y0, y1]],
+                    cps,
+                });
+            }
+        }
+        Ok(Self {
+            patch,
+            elements,
+            quad_order,
+        })
+    }
+
+    pub fn n_cp(&self) -> usize {
+        self.patch.points.len()
+    }
+
+    /// Number of elements per direction.
+    pub fn n_elements(&self) -> [usize; 2] {
+        [
+            self.patch.knots[0].spans().len(),
+            self.patch.knots[1].spans().len(),
+        ]
+    }
+
+    /// Shape functions of element `e` at (ξ, η); fails where the map folds.
+    pub fn shape(&self, e: &Element, xi: f64, eta: f64) -> Result<Shape> {
+        let b = self.patch.basis_in_spans(e.spans, xi, eta);
+        let j = self.patch.jacobian_of(&b);
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        if !(det > 0.0) || !det.is_finite() {
+            return Err(Error::Geometry(format!(
+                "the geometric map is not invertible at (ξ, η) = ({xi}, {eta}): det J = {det:.3e}"
+            )));
+        }
+        let grad =
+            b.dr.iter()
+                .map(|d| {
+                    [
+                        (j[1][1] * d[0] - j[1][0] * d[1]) / det,
+                        (-j[0][1] * d[0] + j[0][0] * d[1]) / det,
+                    ]
+                })
+                .collect();
+        Ok(Shape {
+            x: self.patch.map(&b),
+            r: b.r,
+            grad,
+            det_j: det,
+        })
+    }
+
+    /// Gauss points of element `e`.
+    pub fn quadrature(&self, e: &Element) -> Result<Vec<QuadPoint>> {
+        let gx = quadrature::on_interval(self.quad_order, e.range[0][0], e.range[0][1]);
+        let gy = quadrature::on_interval(self.quad_order, e.range[1][0], e.range[1][1]);
+        let mut out = Vec::with_capacity(gx.len() * gy.len());
+        for &(eta, wy) in &gy {
+            for &(xi, wx) in &gx {
+                let shape = self.shape(e, xi, eta)?;
+                out.push(QuadPoint {
+                    param: [xi, eta],
+                    weight: wx * wy * shape.det_j,
+                    shape,
+                });
+            }
+        }
+        Ok(out)
+    }
+
+    /// The element that holds (ξ, η).
+    pub fn locate(&self, xi: f64, eta: f64) -> usize {
+        let sx = self.patch.knots[0].find_span(xi);
+        let sy = self.patch.knots[1].find_span(eta);
+        let nx = self.n_elements()[0];
+        let ix = self.patch.knots[0]
+            .spans()
+            .iter()
+            .position(|s| s.0 == sx)
+            .unwrap_or(0);
+        let iy = self.patch.knots[1]
+            .spans()
+            .iter()
+            .position(|s| s.0 == sy)
+            .unwrap_or(0);
+        ix + iy * nx
+    }
+
+    /// The element sides along `side`, in the order of the side parameter.
+    pub fn boundary(&self, side: Side) -> Vec<BoundaryElement> {
+        let along = side.along();
+        let knots = &self.patch.knots;
+        let fixed = if side.is_max() {
+            knots[1 - along].last()
+        } else {
+            knots[1 - along].first()
+        };
+        let mut out = Vec::new();
+        for (_, a, b) in knots[along].spans() {
+            let mid = 0.5 * (a + b);
+            let p = self.patch.side_point(side, mid);
+            let element = self.locate(p[0], p[1]);
+            let r = self.elements[element].range[1 - along];
+            debug_assert!(r[0] <= fixed && fixed <= r[1]);
+            let length = quadrature::on_interval(self.quad_order.max(4), a, b)
+                .iter()
+                .map(|&(t, w)| {
+                    let q = self.patch.side_point(side, t);
+                    let j = self.patch.jacobian(q[0], q[1]);
+                    w * j[0][along].hypot(j[1][along])
+                })
+                .sum();
+            out.push(BoundaryElement {
+                side,
+                element,
+                range: [a, b],
+                length,
+            });
+        }
+        out
+    }
+
+    /// Shape functions and side frame (outward normal, |∂x/∂t|) at side
+    /// parameter `t` of a boundary element.
+    pub fn side_shape(&self, be: &BoundaryElement, t: f64) -> Result<(Shape, [f64; 2], f64)> {
+        let e = &self.elements[be.element];
+        let q = self.patch.side_point(be.side, t);
+        let b = self.patch.basis_in_spans(e.spans, q[0], q[1]);
+        let (n, len) = self.patch.side_frame(be.side, &b);
+        let shape = self.shape(e, q[0], q[1])?;
+        Ok((shape, n, len))
+    }
+}
