@@ -43,7 +43,7 @@ else
     if "$PY" -m pip install --help 2>/dev/null | grep -q -- --break-system-packages; then
         pip_flags+=(--break-system-packages)
     fi
-    "$PY" -m pip install "${pip_flags[@]}" "meshio==$MESHIO_VERSION" numpy
+    PIP_ROOT_USER_ACTION=ignore "$PY" -m pip install "${pip_flags[@]}" "meshio==$MESHIO_VERSION" numpy
 fi
 
 say "mdbook:       $(mdbook --version)"

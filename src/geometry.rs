@@ -107,3 +107,73 @@ pub fn segment(a: [f64; 2], b: [f64; 2]) -> Result<NurbsCurve> {
     let k = KnotVector::new(vec![0.0, 0.0, 1.0, 1.0], 1)?;
     NurbsCurve::new(k, vec![a, b], vec![1.0, 1.0])
 }
+
+/// The isoparametric Lagrange (FEM) counterpart of `exact`: a C⁰ spline of
+/// degree `degree` on `elements` equal parameter spans per direction that
+/// interpolates `exact` at the equispaced Lagrange nodes of every element.
+///
+/// Per element, the C⁰ spline space *is* Q_p, and interpolation at the
+/// nodes is exactly the Lagrange interpolant, so this reproduces an
+/// isoparametric Q1/Q2 mesh whose nodes lie on the exact geometry (on the
+/// circle, for a disk) while the edges between nodes are polynomial chords.
+/// Being a spline patch, it runs through the same assembly, contact and
+/// solvers as the NURBS model — only the basis differs.
+pub fn lagrange_interpolant(
+    exact: &NurbsPatch,
+    degree: usize,
+    elements: [usize; 2],
+) -> Result<NurbsPatch> {
+    if !(1..=4).contains(&degree) {
+        return Err(Error::invalid(
+            "lagrange_degree",
+            degree,
+            "must lie in 1..=4",
+        ));
+    }
+    let mut knots = Vec::new();
+    let mut nodes = Vec::new();
+    for (dir, &n) in elements.iter().enumerate() {
+        let (a, b) = (exact.knots[dir].first(), exact.knots[dir].last());
+        let kv = KnotVector::uniform(degree, n, 0)?;
+        let tau: Vec<f64> = (0..=n * degree)
+            .map(|k| a + (b - a) * k as f64 / (n * degree) as f64)
+            .collect();
+        let scaled: Vec<f64> = kv.knots().iter().map(|t| a + (b - a) * t).collect();
+        knots.push(KnotVector::new(scaled, degree)?);
+        nodes.push(tau);
+    }
+    let collocation = |kv: &KnotVector, tau: &[f64]| {
+        let mut m = nalgebra::DMatrix::zeros(tau.len(), kv.n_basis());
+        for (k, &t) in tau.iter().enumerate() {
+            let span = kv.find_span(t);
+            let nb = kv.basis_ders(span, t, 0);
+            for j in 0..=kv.degree() {
+                m[(k, span - kv.degree() + j)] = nb[0][j];
+            }
+        }
+        m.lu()
+    };
+    let (lu0, lu1) = (
+        collocation(&knots[0], &nodes[0]),
+        collocation(&knots[1], &nodes[1]),
+    );
+    let (n0, n1) = (nodes[0].len(), nodes[1].len());
+    let mut points = vec![[0.0; 2]; n0 * n1];
+    for c in 0..2 {
+        let v = nalgebra::DMatrix::from_fn(n0, n1, |i, j| exact.point(nodes[0][i], nodes[1][j])[c]);
+        let step = lu0
+            .solve(&v)
+            .ok_or_else(|| Error::Geometry("Lagrange collocation is singular".into()))?;
+        let coef = lu1
+            .solve(&step.transpose())
+            .ok_or_else(|| Error::Geometry("Lagrange collocation is singular".into()))?
+            .transpose();
+        for j in 0..n1 {
+            for i in 0..n0 {
+                points[i + j * n0][c] = coef[(i, j)];
+            }
+        }
+    }
+    let [k0, k1]: [KnotVector; 2] = knots.try_into().expect("two directions");
+    NurbsPatch::new([k0, k1], points, vec![1.0; n0 * n1])
+}

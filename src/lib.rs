@@ -5,12 +5,17 @@
 //! [`contact`] → [`solver`] → [`report`].
 
 pub mod assembly;
+pub mod benchmarks;
+#[doc(hidden)]
+pub mod book;
+pub mod contact;
 pub mod dofs;
 pub mod error;
 pub mod geometry;
 pub mod linsolve;
 pub mod material;
 pub mod nurbs;
+pub mod problem;
 pub mod quadrature;
 pub mod report;
 pub mod solver;

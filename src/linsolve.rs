@@ -73,7 +73,7 @@ pub enum Method {
 /// A numeric factorisation ready to solve many right-hand sides.
 pub enum Factor {
     Llt(Llt<usize, f64>),
-    Lu(Lu<usize, f64>),
+    Lu(Box<Lu<usize, f64>>),
 }
 
 impl Factor {
@@ -131,7 +131,7 @@ impl Factoriser {
                 }
                 let sym = self.lu.clone().expect("set above");
                 Lu::try_new_with_symbolic(sym, a.as_ref())
-                    .map(Factor::Lu)
+                    .map(|f| Factor::Lu(Box::new(f)))
                     .map_err(|e| sing("LU", &e))
             }
         }

@@ -24,6 +24,7 @@ pub struct Shape {
     pub r: Vec<f64>,
     /// ∂R/∂x and ∂R/∂y.
     pub grad: Vec<[f64; 2]>,
+    /// |det J|: the area factor of the map (see [`Space::orientation`]).
     pub det_j: f64,
 }
 
@@ -55,6 +56,10 @@ pub struct Space {
     pub elements: Vec<Element>,
     /// Gauss points per direction.
     pub quad_order: usize,
+    /// Sign of det J over the patch (+1 or −1). A patch may be parameterised
+    /// either way round (the quarter annulus, with ξ counter-clockwise along
+    /// the arcs and η outward, has det J < 0); a fold shows as a sign change.
+    orientation: f64,
 }
 
 impl Space {
@@ -89,11 +94,36 @@ impl Space {
                 });
             }
         }
-        Ok(Self {
+        let mut space = Self {
             patch,
             elements,
             quad_order,
-        })
+            orientation: 1.0,
+        };
+        // The orientation is the sign of det J at the centre of the first element.
+        let e = &space.elements[0];
+        let c = [
+            0.5 * (e.range[0][0] + e.range[0][1]),
+            0.5 * (e.range[1][0] + e.range[1][1]),
+        ];
+        let j = space
+            .patch
+            .jacobian_of(&space.patch.basis_in_spans(e.spans, c[0], c[1]));
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        if !(det.is_finite() && det != 0.0) {
+            return Err(Error::Geometry(format!(
+                "the geometric map is degenerate at (ξ, η) = ({}, {}): det J = {det:.3e}",
+                c[0], c[1]
+            )));
+        }
+        space.orientation = det.signum();
+        Ok(space)
+    }
+
+    /// +1 if the parameterisation preserves orientation (det J > 0), −1 if
+    /// it reverses it. Integrals use |det J| either way.
+    pub fn orientation(&self) -> f64 {
+        self.orientation
     }
 
     pub fn n_cp(&self) -> usize {
@@ -108,14 +138,17 @@ impl Space {
         ]
     }
 
-    /// Shape functions of element `e` at (ξ, η); fails where the map folds.
+    /// Shape functions of element `e` at (ξ, η); fails where the map folds
+    /// (det J vanishes or has the sign opposite to the patch orientation).
+    /// `det_j` is |det J|, the area factor.
     pub fn shape(&self, e: &Element, xi: f64, eta: f64) -> Result<Shape> {
         let b = self.patch.basis_in_spans(e.spans, xi, eta);
         let j = self.patch.jacobian_of(&b);
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        if !(det > 0.0) || !det.is_finite() {
+        if (det * self.orientation).is_nan() || det * self.orientation <= 0.0 || !det.is_finite() {
             return Err(Error::Geometry(format!(
-                "the geometric map is not invertible at (ξ, η) = ({xi}, {eta}): det J = {det:.3e}"
+                "the geometric map is not invertible at (ξ, η) = ({xi}, {eta}): det J = {det:.3e} (patch orientation {:+})",
+                self.orientation
             )));
         }
         let grad =
@@ -131,7 +164,7 @@ impl Space {
             x: self.patch.map(&b),
             r: b.r,
             grad,
-            det_j: det,
+            det_j: det.abs(),
         })
     }
 

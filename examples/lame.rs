@@ -1,0 +1,279 @@
+//! Lamé's thick-walled cylinder under internal pressure, plane strain: a
+//! convergence study of the elasticity discretisation (Eq. 3) against the
+//! exact solution.
+//!
+//! One quarter of the cross-section, r_in ≤ r ≤ r_out in the first
+//! quadrant, is modelled with the exact quarter-annulus NURBS patch. The
+//! inner arc carries the pressure; symmetry gives u_y = 0 on the x axis and
+//! u_x = 0 on the y axis. For degrees p = 2, 3, 4 and n × n elements, the
+//! relative L² and energy errors are written to
+//! `book/src/generated/lame/convergence.{csv,md,svg}`.
+//!
+//! Run with `cargo run --release --example lame`. The run fails (non-zero
+//! exit) if the observed rates on the finest levels fall below p + 0.8 (L²)
+//! or p − 0.2 (energy).
+
+use iga_contact::assembly::{self, Load};
+use iga_contact::dofs::{Body, DofMap};
+use iga_contact::geometry::quarter_annulus;
+use iga_contact::linsolve::{Factoriser, Method, Pattern};
+use iga_contact::material::{Material, Plane};
+use iga_contact::nurbs::Side;
+use iga_contact::quadrature;
+use iga_contact::space::Space;
+use iga_contact::Result;
+
+/// The cylinder: radii, material (plane strain) and internal pressure.
+#[derive(Clone, Copy, Debug)]
+pub struct Lame {
+    pub r_in: f64,
+    pub r_out: f64,
+    pub young: f64,
+    pub poisson: f64,
+    pub pressure: f64,
+}
+
+impl Default for Lame {
+    fn default() -> Self {
+        Self {
+            r_in: 1.0,
+            r_out: 2.0,
+            young: 1.0e5,
+            poisson: 0.3,
+            pressure: 100.0,
+        }
+    }
+}
+
+/// One refinement level of one degree.
+#[derive(Clone, Copy, Debug)]
+pub struct Row {
+    pub degree: usize,
+    /// Elements per direction.
+    pub n: usize,
+    /// Total number of elements, n².
+    pub elements: usize,
+    /// Unknowns of the solved system (free DOFs).
+    pub dofs: usize,
+    pub l2_error: f64,
+    pub energy_error: f64,
+}
+
+impl Lame {
+    pub fn material(&self) -> Result<Material> {
+        Material::new(self.young, self.poisson, Plane::Strain)
+    }
+
+    /// The constants of u_r(r) = A r + B / r.
+    ///
+    /// σ_rr = 2(λ+μ) A − 2μ B / r²; σ_rr(r_in) = −p and σ_rr(r_out) = 0 give
+    /// B = p a² b² / (2μ (b² − a²)) and A = p a² / (2(λ+μ)(b² − a²)).
+    pub fn constants(&self) -> (f64, f64) {
+        let (e, nu, p) = (self.young, self.poisson, self.pressure);
+        let (a2, b2) = (self.r_in * self.r_in, self.r_out * self.r_out);
+        let mu = e / (2.0 * (1.0 + nu));
+        let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let a = p * a2 / (2.0 * (lambda + mu) * (b2 - a2));
+        let b = p * a2 * b2 / (2.0 * mu * (b2 - a2));
+        (a, b)
+    }
+
+    /// Exact displacement u = (A + B/r²) x.
+    pub fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
+        let (a, b) = self.constants();
+        let r2 = x[0] * x[0] + x[1] * x[1];
+        let f = a + b / r2;
+        [f * x[0], f * x[1]]
+    }
+
+    /// Exact strain in Voigt order (ε_xx, ε_yy, γ_xy).
+    pub fn strain(&self, x: [f64; 2]) -> [f64; 3] {
+        let (a, b) = self.constants();
+        let r2 = x[0] * x[0] + x[1] * x[1];
+        let r4 = r2 * r2;
+        let d = x[1] * x[1] - x[0] * x[0];
+        [a + b * d / r4, a - b * d / r4, -4.0 * b * x[0] * x[1] / r4]
+    }
+
+    /// Exact radial and hoop stresses at radius r.
+    pub fn polar_stress(&self, r: f64) -> (f64, f64) {
+        let (a2, b2) = (self.r_in * self.r_in, self.r_out * self.r_out);
+        let c = self.pressure * a2 / (b2 - a2);
+        (c * (1.0 - b2 / (r * r)), c * (1.0 + b2 / (r * r)))
+    }
+
+    /// Solves on `n × n` elements of degree `p` and measures the errors
+    /// with p + 3 Gauss points per direction.
+    pub fn solve(&self, p: usize, n: usize) -> Result<Row> {
+        let patch = quarter_annulus(self.r_in, self.r_out)?.k_refined(p, [n, n])?;
+        let bodies = vec![Body {
+            name: "cylinder".into(),
+            space: Space::new(patch, None)?,
+            material: self.material()?,
+        }];
+        let mut builder = DofMap::builder(&bodies);
+        builder
+            .fix_side(0, Side::XiMin, 1, 0.0)?
+            .fix_side(0, Side::XiMax, 0, 0.0)?;
+        let map = builder.build();
+        let (trip, lift) = assembly::stiffness(&bodies, &map)?;
+        let load = Load::Pressure {
+            body: 0,
+            side: Side::EtaMin,
+            pressure: self.pressure,
+        };
+        let f = assembly::load_vector(&bodies, &map, &[load])?;
+        let rhs: Vec<f64> = f.iter().zip(&lift).map(|(f, l)| f - l).collect();
+        let k = Pattern::new(map.n_free(), &trip)?.matrix(&trip.vals)?;
+        let u_free = Factoriser::default()
+            .factor(&k, Method::Cholesky)?
+            .solve(&rhs)?;
+        let u = map.expand(&u_free);
+
+        let d = bodies[0].material.d_matrix();
+        let energy = |e: [f64; 3]| -> f64 {
+            (0..3)
+                .map(|i| (0..3).map(|j| e[i] * d[i][j] * e[j]).sum::<f64>())
+                .sum()
+        };
+        let space = &bodies[0].space;
+        let (mut l2_num, mut l2_den, mut en_num, mut en_den) = (0.0, 0.0, 0.0, 0.0);
+        for el in &space.elements {
+            let gx = quadrature::on_interval(p + 3, el.range[0][0], el.range[0][1]);
+            let gy = quadrature::on_interval(p + 3, el.range[1][0], el.range[1][1]);
+            for &(eta, wy) in &gy {
+                for &(xi, wx) in &gx {
+                    let shape = space.shape(el, xi, eta)?;
+                    let w = wx * wy * shape.det_j;
+                    let uh = assembly::displacement_at(&map, &u, 0, &el.cps, &shape);
+                    let eh = assembly::strain_at(&map, &u, 0, &el.cps, &shape);
+                    let ue = self.displacement(shape.x);
+                    let ee = self.strain(shape.x);
+                    let du = [uh[0] - ue[0], uh[1] - ue[1]];
+                    let de = [eh[0] - ee[0], eh[1] - ee[1], eh[2] - ee[2]];
+                    l2_num += w * (du[0] * du[0] + du[1] * du[1]);
+                    l2_den += w * (ue[0] * ue[0] + ue[1] * ue[1]);
+                    en_num += w * energy(de);
+                    en_den += w * energy(ee);
+                }
+            }
+        }
+        Ok(Row {
+            degree: p,
+            n,
+            elements: space.elements.len(),
+            dofs: map.n_free(),
+            l2_error: (l2_num / l2_den).sqrt(),
+            energy_error: (en_num / en_den).sqrt(),
+        })
+    }
+}
+
+/// Observed rates with respect to the element size h ∝ 1/n between each
+/// level and the previous one: `(l2, energy)`; `None` on the first level.
+pub fn rates(rows: &[Row]) -> Vec<Option<(f64, f64)>> {
+    rows.iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let prev = rows[..k].last()?;
+            let dh = (r.n as f64 / prev.n as f64).ln();
+            Some((
+                (prev.l2_error / r.l2_error).ln() / dh,
+                (prev.energy_error / r.energy_error).ln() / dh,
+            ))
+        })
+        .collect()
+}
+
+/// Checks the rate between the last two levels of one degree: at least
+/// p + 0.8 in L² (optimal p + 1) and p − 0.2 in energy (optimal p).
+pub fn check_rates(rows: &[Row], p: usize) -> std::result::Result<(), String> {
+    let rs = rates(rows);
+    if rs.len() < 2 {
+        return Err(format!("p = {p}: need at least two levels"));
+    }
+    if let (Some(row), Some(Some((l2, en)))) = (rows.last(), rs.last()) {
+        let (l2, en) = (*l2, *en);
+        if l2 < p as f64 + 0.8 || en < p as f64 - 0.2 {
+            return Err(format!(
+                "p = {p}, {n}×{n} elements: L² rate {l2:.2} (need ≥ {:.1}), energy rate {en:.2} (need ≥ {:.1})",
+                p as f64 + 0.8,
+                p as f64 - 0.2,
+                n = row.n,
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The CSV: one row per (degree, level); `elements` is the total count.
+pub fn csv(rows: &[Row]) -> String {
+    let mut s = String::from("degree,elements,dofs,l2_error,energy_error\n");
+    for r in rows {
+        s.push_str(&format!(
+            "{},{},{},{:.6e},{:.6e}\n",
+            r.degree, r.elements, r.dofs, r.l2_error, r.energy_error
+        ));
+    }
+    s
+}
+
+/// The Markdown table with the observed rates in h.
+pub fn markdown(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| p | elements | DOFs | rel. L² error | L² rate | rel. energy error | energy rate |\n\
+         |---|---:|---:|---:|---:|---:|---:|\n",
+    );
+    let mut start = 0;
+    while start < rows.len() {
+        let p = rows[start].degree;
+        let end = start + rows[start..].iter().take_while(|r| r.degree == p).count();
+        let group = &rows[start..end];
+        for (r, rate) in group.iter().zip(rates(group)) {
+            let (l2r, enr) = match rate {
+                Some((a, b)) => (format!("{a:.2}"), format!("{b:.2}")),
+                None => ("–".into(), "–".into()),
+            };
+            s.push_str(&format!(
+                "| {} | {}×{} = {} | {} | {:.3e} | {} | {:.3e} | {} |\n",
+                r.degree, r.n, r.n, r.elements, r.dofs, r.l2_error, l2r, r.energy_error, enr
+            ));
+        }
+        start = end;
+    }
+    s
+}
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let problem = Lame::default();
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated/lame");
+    let levels = [2, 4, 8, 16, 32, 64];
+    let mut rows = Vec::new();
+    let mut failures = Vec::new();
+    for p in [2, 3, 4] {
+        let start = rows.len();
+        for &n in &levels {
+            let t = std::time::Instant::now();
+            let row = problem.solve(p, n)?;
+            eprintln!(
+                "p = {p}, {n:>2}×{n:<2}: {:>6} DOFs, L² {:.3e}, energy {:.3e} ({:.2} s)",
+                row.dofs,
+                row.l2_error,
+                row.energy_error,
+                t.elapsed().as_secs_f64()
+            );
+            rows.push(row);
+        }
+        if let Err(e) = check_rates(&rows[start..], p) {
+            failures.push(e);
+        }
+    }
+    let table = markdown(&rows);
+    iga_contact::report::atomic::write_text(out.join("convergence.csv"), &csv(&rows))?;
+    iga_contact::report::atomic::write_text(out.join("convergence.md"), &table)?;
+    println!("{table}");
+    if !failures.is_empty() {
+        return Err(format!("rates below the expected ones:\n{}", failures.join("\n")).into());
+    }
+    Ok(())
+}

@@ -1,0 +1,10 @@
+//! Nitsche contact: pairs and their quadrature points (gap, normal, Eq. 4–5),
+//! the closest-point projection, the empirical penalty (11), and the
+//! residual and matrices of Eq. (9), (13), (17)–(19).
+
+pub mod nitsche;
+pub mod pair;
+pub mod penalty;
+pub mod projection;
+
+pub use pair::{contact_points, ContactPair, ContactPoint, Integration, Master};

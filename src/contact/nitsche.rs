@@ -1,0 +1,53 @@
+//! The Nitsche terms of the θ-family, Eq. (9)–(10), (13) and (17)–(19), at
+//! one contact quadrature point.
+//!
+//! With P(u) = σ_n(u) + γ g_n(u) and P_θ(v) = θ σ_n(v) − γ [[v_n]], the
+//! contact work is
+//!   − (θ/γ) ∫ σ_n(u) σ_n(v) + (1/γ) ∫ [P(u)]₋ P_θ(v),
+//! which for θ = 0 is the paper's − ∫ [P(u)]₋ [[v_n]].
+
+use super::pair::ContactPoint;
+use nalgebra::DMatrix;
+
+/// The projection of Eq. (10): [x]₋ = x for x ≤ 0, else 0.
+pub fn negative_part(x: f64) -> f64 {
+    x.min(0.0)
+}
+
+/// The Heaviside function of Eq. (19): 1 for x ≤ 0, else 0.
+pub fn heaviside(x: f64) -> f64 {
+    if x <= 0.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// Adds the contact part of the internal force at one point to `g` (a
+/// vector over the point's local DOFs), for the full displacement `u`.
+/// Returns P(u).
+pub fn add_internal_force(cp: &ContactPoint, u: &[f64], g: &mut [f64]) -> f64 {
+    let (sigma_n, jump) = cp.normal_stress_and_jump(u);
+    let p = sigma_n + cp.gamma * (cp.g0 - jump);
+    let (th, ga, w) = (cp.theta, cp.gamma, cp.weight);
+    let pm = negative_part(p);
+    for k in 0..cp.dofs.len() {
+        let p_theta = th * cp.sn[k] - ga * cp.jn[k];
+        g[k] += -(th / ga) * w * sigma_n * cp.sn[k] + (w / ga) * pm * p_theta;
+    }
+    p
+}
+
+/// The local matrix of a point (rows: test functions, columns: trial):
+///   −(θ/γ) w sn snᵀ + h (w/γ) (θ sn − γ jn)(sn − γ jn)ᵀ.
+/// With h = 1 this is the tied matrix (17); with h = H(P(u_k)) it is the
+/// secant / generalised Newton matrix (18)–(19).
+pub fn local_matrix(cp: &ContactPoint, h: f64) -> DMatrix<f64> {
+    let n = cp.dofs.len();
+    let (th, ga, w) = (cp.theta, cp.gamma, cp.weight);
+    DMatrix::from_fn(n, n, |a, b| {
+        let test = th * cp.sn[a] - ga * cp.jn[a];
+        let trial = cp.sn[b] - ga * cp.jn[b];
+        -(th / ga) * w * cp.sn[a] * cp.sn[b] + h * (w / ga) * test * trial
+    })
+}

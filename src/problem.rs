@@ -1,0 +1,169 @@
+//! The assembled contact problem: bulk stiffness, loads, contact points,
+//! and the residual (13) and kernels (17)–(18) the solvers need, all over
+//! the free DOFs.
+
+use crate::assembly::{load_vector, stiffness, Load, Triplets};
+use crate::contact::nitsche::{add_internal_force, heaviside, local_matrix};
+use crate::contact::{contact_points, ContactPair, ContactPoint};
+use crate::dofs::{Body, DofMap};
+use crate::error::{Error, Result};
+use crate::linsolve::{mul, Pattern};
+use faer::sparse::SparseColMat;
+
+/// Which approximate tangent to build.
+#[derive(Clone, Copy, Debug)]
+pub enum Kernel<'a> {
+    /// Eq. (17): every contact point active (normal "tied" coupling).
+    Tied,
+    /// Eq. (18)–(19): active set of P at the given free displacement.
+    Secant(&'a [f64]),
+}
+
+/// Everything needed to evaluate R(u) and the kernels.
+pub struct Problem {
+    pub bodies: Vec<Body>,
+    pub map: DofMap,
+    pub pairs: Vec<ContactPair>,
+    pub points: Vec<ContactPoint>,
+    /// F − K_fc ū over the free DOFs.
+    pub rhs: Vec<f64>,
+    /// Bulk stiffness over the free DOFs.
+    pub k: SparseColMat<usize, f64>,
+    bulk: Triplets,
+    pattern: Pattern,
+}
+
+/// Summary of the contact state at one displacement.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ContactState {
+    pub active: usize,
+}
+
+impl Problem {
+    pub fn new(
+        bodies: Vec<Body>,
+        map: DofMap,
+        loads: &[Load],
+        pairs: Vec<ContactPair>,
+    ) -> Result<Self> {
+        let (bulk, lift) = stiffness(&bodies, &map)?;
+        let mut rhs = load_vector(&bodies, &map, loads)?;
+        for (r, l) in rhs.iter_mut().zip(&lift) {
+            *r -= l;
+        }
+        let points = contact_points(&bodies, &map, &pairs)?;
+        let n = map.n_free();
+        if n == 0 {
+            return Err(Error::invalid(
+                "supports",
+                "all DOFs",
+                "every degree of freedom is prescribed",
+            ));
+        }
+        let bulk_pattern = Pattern::new(n, &bulk)?;
+        let k = bulk_pattern.matrix(&bulk.vals)?;
+        let mut all = bulk.clone();
+        all.extend(Self::contact_triplets(&map, &points, |_| 1.0));
+        let pattern = Pattern::new(n, &all)?;
+        Ok(Self {
+            bodies,
+            map,
+            pairs,
+            points,
+            rhs,
+            k,
+            bulk,
+            pattern,
+        })
+    }
+
+    pub fn n(&self) -> usize {
+        self.map.n_free()
+    }
+
+    fn contact_triplets(
+        map: &DofMap,
+        points: &[ContactPoint],
+        h: impl Fn(&ContactPoint) -> f64,
+    ) -> Triplets {
+        let mut t = Triplets::default();
+        let mut scratch = vec![0.0; map.n_free()];
+        for cp in points {
+            t.add_block(
+                map,
+                &cp.dofs,
+                &cp.dofs,
+                &local_matrix(cp, h(cp)),
+                &mut scratch,
+            );
+        }
+        t
+    }
+
+    /// The kernel matrix: bulk stiffness plus the contact matrix of `kind`.
+    /// Same sparsity pattern for every kind, so one symbolic factorisation
+    /// serves them all.
+    pub fn kernel(&self, kind: Kernel) -> Result<SparseColMat<usize, f64>> {
+        let contact = match kind {
+            Kernel::Tied => Self::contact_triplets(&self.map, &self.points, |_| 1.0),
+            Kernel::Secant(u) => {
+                let full = self.map.expand(u);
+                Self::contact_triplets(&self.map, &self.points, |cp| heaviside(cp.p(&full)))
+            }
+        };
+        let mut vals = Vec::with_capacity(self.bulk.len() + contact.len());
+        vals.extend_from_slice(&self.bulk.vals);
+        vals.extend_from_slice(&contact.vals);
+        self.pattern.matrix(&vals)
+    }
+
+    /// Number of contact points with P(u) ≤ 0 at the free displacement `u`.
+    pub fn active_points(&self, u: &[f64]) -> usize {
+        let full = self.map.expand(u);
+        self.points.iter().filter(|cp| cp.p(&full) <= 0.0).count()
+    }
+
+    /// The residual (13), R(u) = L(v) − a(u, v) + contact work, over the
+    /// free DOFs, and the contact state.
+    pub fn residual(&self, u: &[f64]) -> (Vec<f64>, ContactState) {
+        let full = self.map.expand(u);
+        let ku = mul(&self.k, u);
+        let mut r: Vec<f64> = self.rhs.iter().zip(&ku).map(|(f, k)| f - k).collect();
+        let mut active = 0;
+        let mut g = Vec::new();
+        for cp in &self.points {
+            g.clear();
+            g.resize(cp.dofs.len(), 0.0);
+            if add_internal_force(cp, &full, &mut g) <= 0.0 {
+                active += 1;
+            }
+            for (k, &dof) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self.map.free(dof) {
+                    r[i] -= g[k];
+                }
+            }
+        }
+        (r, ContactState { active })
+    }
+
+    /// Contact pressure −[P(u)]₋ ≥ 0 at every contact point, with the point,
+    /// for a full displacement vector.
+    pub fn pressures(&self, full: &[f64]) -> Vec<(&ContactPoint, f64)> {
+        self.points
+            .iter()
+            .map(|cp| (cp, -cp.p(full).min(0.0)))
+            .collect()
+    }
+
+    /// Resultant force the master exerts on the slave, ∫ −[P]₋ n¹ dΓ with
+    /// the sign that makes it oppose penetration: Σ w [P]₋ n¹.
+    pub fn contact_force(&self, full: &[f64]) -> [f64; 2] {
+        let mut f = [0.0; 2];
+        for cp in &self.points {
+            let pm = cp.p(full).min(0.0);
+            f[0] += cp.weight * pm * cp.normal[0];
+            f[1] += cp.weight * pm * cp.normal[1];
+        }
+        f
+    }
+}

@@ -1,0 +1,76 @@
+//! Semismooth Newton, Eq. (12)–(14), with the active-set tangent (18) and a
+//! backtracking line search on ‖R‖.
+//!
+//! Without globalisation the full-step method can cycle between active
+//! sets (period 4 on Hertz 8×8, p = 2). Since Δu = K_T⁻¹R is a descent
+//! direction of ½‖R‖² wherever R is differentiable, halving the step until
+//! ‖R‖ decreases enough (Armijo) removes the cycle. At a kink the direction
+//! may fail to descend; then the best step tried is taken.
+//!
+//! The first step uses the tied kernel (17), exactly like BFGS: at u = 0 an
+//! open initial gap leaves the active set empty and (18) singular.
+
+use super::bfgs::secant_or_tied;
+use super::history::Event;
+use super::{norm, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD};
+use crate::error::Result;
+use crate::linsolve::Factoriser;
+use crate::problem::{Kernel, Problem};
+
+/// A line-search trial: (‖R‖, u, R, contact state, step length).
+type Trial = (f64, Vec<f64>, Vec<f64>, crate::problem::ContactState, f64);
+
+const MAX_CUTS: usize = 30;
+const ARMIJO: f64 = 1e-4;
+
+pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
+    let n = problem.n();
+    let mut fac = Factoriser::default();
+    let mut factorisations = 0;
+    let mut u = vec![0.0; n];
+    let (mut r, _) = problem.residual(&u);
+    let mut tracker = Tracker::new(problem, opts, norm(&r));
+    if norm(&r) == 0.0 {
+        return Ok(tracker.finish(u, factorisations));
+    }
+    loop {
+        let mut events = Vec::new();
+        let tangent = if tracker.history.is_empty() {
+            fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)?
+        } else {
+            secant_or_tied(problem, &mut fac, &u, &mut events)?
+        };
+        factorisations += 1;
+        let dir = tangent.solve(&r)?;
+        let r_norm = norm(&r);
+        let mut alpha = 1.0;
+        let mut cuts = 0;
+        let mut best: Option<Trial> = None;
+        let (alpha, trial_u, trial_r, state) = loop {
+            let trial: Vec<f64> = u.iter().zip(&dir).map(|(a, d)| a + alpha * d).collect();
+            let (tr, st) = problem.residual(&trial);
+            let tn = norm(&tr);
+            if tn <= (1.0 - ARMIJO * alpha) * r_norm || tracker.history.is_empty() {
+                break (alpha, trial, tr, st);
+            }
+            if best.as_ref().is_none_or(|b| tn < b.0) {
+                best = Some((tn, trial, tr, st, alpha));
+            }
+            if cuts == MAX_CUTS {
+                let (_, bu, br, bs, ba) = best.expect("at least one trial");
+                break (ba, bu, br, bs);
+            }
+            alpha *= 0.5;
+            cuts += 1;
+        };
+        if cuts > 0 {
+            events.push(Event::LineSearchCuts(cuts));
+        }
+        let du: Vec<f64> = dir.iter().map(|d| alpha * d).collect();
+        u = trial_u;
+        r = trial_r;
+        if let Status::Converged = tracker.record(&u, &du, &r, state.active, events)? {
+            return Ok(tracker.finish(u, factorisations));
+        }
+    }
+}
