@@ -20,5 +20,6 @@ pub mod quadrature;
 pub mod report;
 pub mod solver;
 pub mod space;
+pub mod studies;
 
 pub use error::{Error, Result};

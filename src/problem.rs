@@ -146,6 +146,86 @@ impl Problem {
         (r, ContactState { active })
     }
 
+    /// Rigid-body modes (full-length vectors, one per mode) that the
+    /// supports leave free: only contact can hold these.
+    pub fn floating_modes(&self) -> Vec<Vec<f64>> {
+        let mut modes = Vec::new();
+        for (b, body) in self.bodies.iter().enumerate() {
+            let pts = &body.space.patch.points;
+            let c = pts
+                .iter()
+                .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+            let c = [c[0] / pts.len() as f64, c[1] / pts.len() as f64];
+            // translations x, y and the rotation about the centroid
+            let mode = |k: usize, p: [f64; 2], comp: usize| match (k, comp) {
+                (0, 0) | (1, 1) => 1.0,
+                (2, 0) => -(p[1] - c[1]),
+                (2, 1) => p[0] - c[0],
+                _ => 0.0,
+            };
+            let mut mtm = nalgebra::Matrix3::<f64>::zeros();
+            for (a, p) in pts.iter().enumerate() {
+                for comp in 0..2 {
+                    if self.map.free(self.map.global(b, a, comp)).is_none() {
+                        let row = nalgebra::Vector3::from_fn(|k, _| mode(k, *p, comp));
+                        mtm += row * row.transpose();
+                    }
+                }
+            }
+            let eig = mtm.symmetric_eigen();
+            let tol = 1e-10 * (1.0 + mtm.trace());
+            for (k, lambda) in eig.eigenvalues.iter().enumerate() {
+                if *lambda <= tol {
+                    let coef = eig.eigenvectors.column(k);
+                    let mut v = vec![0.0; self.map.n_total()];
+                    for (a, p) in pts.iter().enumerate() {
+                        for comp in 0..2 {
+                            v[self.map.global(b, a, comp)] =
+                                (0..3).map(|m| coef[m] * mode(m, *p, comp)).sum();
+                        }
+                    }
+                    modes.push(v);
+                }
+            }
+        }
+        modes
+    }
+
+    /// Fails when no compressive contact force can balance the load along a
+    /// free rigid mode r: equilibrium needs r·F = Σ w |P| ([[r_n]]) with
+    /// |P| ≥ 0, impossible if every [[r_n]] has the wrong sign (or there is
+    /// no contact point at all).
+    pub fn check_support(&self) -> Result<()> {
+        for r in self.floating_modes() {
+            let rf: f64 = self
+                .map
+                .restrict(&r)
+                .iter()
+                .zip(&self.rhs)
+                .map(|(a, b)| a * b)
+                .sum();
+            let scale: f64 = self
+                .rhs
+                .iter()
+                .map(|v| v.abs())
+                .sum::<f64>()
+                .max(f64::MIN_POSITIVE);
+            if rf.abs() <= 1e-12 * scale {
+                continue;
+            }
+            let can_balance = self.points.iter().any(|cp| {
+                let (_, jump) = cp.normal_stress_and_jump(&r);
+                jump * rf > 0.0
+            });
+            if !can_balance {
+                return Err(Error::Floating(
+                    "the load pulls a body away from every contact point and no support holds it, so no equilibrium exists".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Contact pressure −[P(u)]₋ ≥ 0 at every contact point, with the point,
     /// for a full displacement vector.
     pub fn pressures(&self, full: &[f64]) -> Vec<(&ContactPoint, f64)> {

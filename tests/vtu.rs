@@ -122,10 +122,22 @@ fn tricky_floats_mesh() -> VtuMesh {
         cells: vec![vec![0, 1, 2, 3]],
         cell_types: vec![VTK_QUAD],
         point_data: vec![
+            // The checker's tolerance scales with an array's largest value,
+            // so the extremes get arrays of their own.
             PointField {
                 name: "scalar".into(),
                 components: 1,
-                values: vec![1e300, -5e-324, std::f64::consts::PI, -0.1],
+                values: vec![1.0 / 7.0, -0.0, std::f64::consts::PI, -0.1],
+            },
+            PointField {
+                name: "huge".into(),
+                components: 1,
+                values: vec![1e300, -1.7976931348623157e308, 123456789.0, 0.5],
+            },
+            PointField {
+                name: "tiny".into(),
+                components: 1,
+                values: vec![1e-300, -5e-324, 2.2250738585072014e-308, 0.0],
             },
             PointField {
                 name: "vector".into(),
@@ -203,14 +215,16 @@ fn two_body_model_is_sampled_exactly_and_round_trips() {
             + 3.0 * sxy * sxy)
             .sqrt();
         assert!(
-            (vm[k] - want_vm).abs() <= 1e-6 * want_vm,
+            (vm[k] - want_vm).abs() <= 1e-7 * want_vm,
             "von Mises at {k}"
         );
     }
-    // Away from the disk corners the error is rounding; at the corners the
-    // nudge divides by det J ∝ 1e-8, which costs about ε / 1e-8.
+    // Away from the disk corners the error is rounding. At the corners the
+    // sample is nudged to det J ≈ 2e-6 of the element-centre value, and the
+    // cancellation of the rigid translation A in Σ ∇R_A u_A loses about
+    // 1e-15 / 2e-6 of |u| there: 1.4e-8 of the stress measured.
     assert!(
-        worst < 1e-6,
+        worst < 1e-7,
         "stress not constant: worst relative error {worst:e}"
     );
     println!("worst relative stress error: {worst:e}");
@@ -290,7 +304,8 @@ fn nan_displacement_is_refused_and_writes_nothing() {
     let path = dir.join("nan.vtu");
     let _ = std::fs::remove_file(&path);
     let mut mesh = tricky_floats_mesh();
-    mesh.point_data[1].values[7] = f64::NAN;
+    let vector = mesh.point_data.iter_mut().find(|f| f.name == "vector");
+    vector.unwrap().values[7] = f64::NAN;
     let err = mesh.write(&path).unwrap_err().to_string();
     assert!(err.contains("vtu.point_data.vector[7]"), "{err}");
     assert!(!path.exists());

@@ -107,6 +107,7 @@ pub struct Solution {
 /// Runs the solver chosen in `opts`.
 pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     opts.validate("solver")?;
+    problem.check_support()?;
     match opts.kind {
         SolverKind::Bfgs => bfgs::solve(problem, opts, true),
         SolverKind::BfgsNoCorrection => bfgs::solve(problem, opts, false),

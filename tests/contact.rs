@@ -1,0 +1,179 @@
+//! The contact Jacobians against finite differences of the residual, for
+//! θ = 0, 1, −1, on a rigid master (Hertz) and a deformable one (Taylor).
+
+use iga_contact::benchmarks::{Hertz, Taylor};
+use iga_contact::contact::Integration;
+use iga_contact::problem::{Kernel, Problem};
+use iga_contact::solver::{solve, SolverKind, SolverOptions};
+
+fn dense(p: &Problem, kind: Kernel) -> Vec<Vec<f64>> {
+    let a = p.kernel(kind).unwrap();
+    let n = p.n();
+    let mut d = vec![vec![0.0; n]; n];
+    let s = a.symbolic();
+    for j in 0..n {
+        for k in s.col_ptr()[j]..s.col_ptr()[j + 1] {
+            d[s.row_idx()[k]][j] += a.val()[k];
+        }
+    }
+    d
+}
+
+/// Checks −∂R/∂u_j against column j of the secant kernel (18) at `u`,
+/// for every column whose perturbation keeps every P(u) on one side of 0.
+fn check_jacobian(p: &Problem, u: &[f64]) -> usize {
+    let k = dense(p, Kernel::Secant(u));
+    let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-12);
+    let h = 1e-6 * scale;
+    let sign = |v: &[f64]| -> Vec<bool> {
+        let full = p.map.expand(v);
+        p.points.iter().map(|cp| cp.p(&full) <= 0.0).collect()
+    };
+    let s0 = sign(u);
+    let mut checked = 0;
+    for j in 0..p.n() {
+        let mut up = u.to_vec();
+        let mut dn = u.to_vec();
+        up[j] += h;
+        dn[j] -= h;
+        if sign(&up) != s0 || sign(&dn) != s0 {
+            continue; // at the kink the Jacobian is only a generalised one
+        }
+        let (rp, _) = p.residual(&up);
+        let (rm, _) = p.residual(&dn);
+        let col: Vec<f64> = (0..p.n()).map(|i| k[i][j]).collect();
+        let norm = col.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let err = (0..p.n())
+            .map(|i| (-(rp[i] - rm[i]) / (2.0 * h) - col[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(
+            err <= 1e-6 * norm,
+            "column {j}: |FD − K| = {err:.3e}, |K| = {norm:.3e}"
+        );
+        checked += 1;
+    }
+    checked
+}
+
+fn perturbed_solution(p: &Problem, amplitude: f64) -> Vec<f64> {
+    let s = solve(p, &SolverOptions::with_kind(SolverKind::Newton)).expect("converges");
+    let umax = s.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut seed = 7u64;
+    s.u.iter()
+        .map(|v| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            v + amplitude * umax * (((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5)
+        })
+        .collect()
+}
+
+#[test]
+fn secant_matrix_is_the_jacobian_on_a_rigid_master() {
+    for theta in [0.0, 1.0, -1.0] {
+        let p = Hertz {
+            elements: 4,
+            theta,
+            ..Hertz::default()
+        }
+        .build()
+        .unwrap();
+        let u = perturbed_solution(&p, 1e-3);
+        let active = p.active_points(&u);
+        assert!(
+            active > 0 && active < p.points.len(),
+            "θ = {theta}: want a mixed active set, got {active}"
+        );
+        let checked = check_jacobian(&p, &u);
+        assert!(
+            checked >= p.n() * 9 / 10,
+            "θ = {theta}: only {checked} of {} columns away from the kink",
+            p.n()
+        );
+    }
+}
+
+#[test]
+fn secant_matrix_is_the_jacobian_between_two_bodies() {
+    for theta in [0.0, 1.0, -1.0] {
+        let p = Taylor {
+            theta,
+            integration: Integration::Gauss,
+            ..Taylor::default()
+        }
+        .build()
+        .unwrap();
+        let u = perturbed_solution(&p, 1e-2);
+        assert_eq!(p.active_points(&u), p.points.len());
+        assert_eq!(check_jacobian(&p, &u), p.n(), "θ = {theta}");
+    }
+}
+
+#[test]
+fn tied_kernel_is_symmetric_only_for_theta_one() {
+    for (theta, symmetric) in [(1.0, true), (0.0, false), (-1.0, false)] {
+        let p = Hertz {
+            elements: 4,
+            theta,
+            ..Hertz::default()
+        }
+        .build()
+        .unwrap();
+        let k = dense(&p, Kernel::Tied);
+        let scale = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let asym = (0..p.n())
+            .flat_map(|i| (0..p.n()).map(move |j| (i, j)))
+            .map(|(i, j)| (k[i][j] - k[j][i]).abs())
+            .fold(0.0, f64::max);
+        assert_eq!(
+            asym <= 1e-12 * scale,
+            symmetric,
+            "θ = {theta}: asymmetry {asym:.3e} of {scale:.3e}"
+        );
+    }
+}
+
+#[test]
+fn a_body_pulled_away_from_the_floor_is_reported_as_floating() {
+    let p = Hertz {
+        elements: 4,
+        ..Hertz::default()
+    }
+    .build_with(Hertz::material(), -1.0)
+    .unwrap();
+    for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        let opts = SolverOptions {
+            max_iter: 40,
+            ..SolverOptions::with_kind(kind)
+        };
+        let err = solve(&p, &opts).expect_err("no equilibrium without contact");
+        let msg = err.to_string();
+        assert!(msg.contains("floats"), "{kind:?}: {msg}");
+        assert_eq!(err.kind(), "floating_body");
+    }
+}
+
+#[test]
+fn the_disk_has_exactly_one_floating_mode_and_the_blocks_one_each() {
+    let h = Hertz {
+        elements: 2,
+        ..Hertz::default()
+    }
+    .build()
+    .unwrap();
+    assert_eq!(
+        h.floating_modes().len(),
+        1,
+        "vertical translation of the disk"
+    );
+    let t = Taylor::default().build().unwrap();
+    assert_eq!(
+        t.floating_modes().len(),
+        1,
+        "vertical translation of the upper block"
+    );
+    h.check_support().unwrap();
+    t.check_support().unwrap();
+}
