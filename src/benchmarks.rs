@@ -54,8 +54,21 @@ impl Taylor {
 
     /// As [`Taylor::build`] with given materials and a load multiplier.
     pub fn build_with(&self, lower: Material, upper: Material, load_scale: f64) -> Result<Problem> {
+        self.build_with_gap(lower, upper, load_scale, 0.0)
+    }
+
+    /// As [`Taylor::build_with`] with the upper block lifted by `gap`
+    /// (negative: an initial penetration).
+    pub fn build_with_gap(
+        &self,
+        lower: Material,
+        upper: Material,
+        load_scale: f64,
+        gap: f64,
+    ) -> Result<Problem> {
         let lo = geometry::rectangle(0.0, 0.0, 1.0, 0.5)?.k_refined(self.degree, self.lower)?;
-        let up = geometry::rectangle(0.0, 0.5, 1.0, 1.0)?.k_refined(self.degree, self.upper)?;
+        let up = geometry::rectangle(0.0, 0.5 + gap, 1.0, 1.0 + gap)?
+            .k_refined(self.degree, self.upper)?;
         let bodies = vec![
             Body {
                 name: "lower".into(),
@@ -174,7 +187,12 @@ impl Hertz {
     }
 
     pub fn patch(&self) -> Result<NurbsPatch> {
-        let exact = geometry::half_disk([0.0, HERTZ_RADIUS], HERTZ_RADIUS)?;
+        self.patch_at(0.0)
+    }
+
+    /// The disk with its lowest point at height `lift` above the floor.
+    pub fn patch_at(&self, lift: f64) -> Result<NurbsPatch> {
+        let exact = geometry::half_disk([0.0, HERTZ_RADIUS + lift], HERTZ_RADIUS)?;
         match self.lagrange {
             None => exact.k_refined(self.degree, [self.elements, self.elements]),
             Some(p) => geometry::lagrange_interpolant(&exact, p, [self.elements, self.elements]),
@@ -186,9 +204,15 @@ impl Hertz {
     }
 
     pub fn build_with(&self, material: Material, load_scale: f64) -> Result<Problem> {
+        self.build_lifted(material, load_scale, 0.0)
+    }
+
+    /// As [`Hertz::build_with`] with the disk lifted by `lift` (negative:
+    /// an initial penetration).
+    pub fn build_lifted(&self, material: Material, load_scale: f64, lift: f64) -> Result<Problem> {
         let bodies = vec![Body {
             name: "disk".into(),
-            space: Space::new(self.patch()?, None)?,
+            space: Space::new(self.patch_at(lift)?, None)?,
             material,
         }];
         let mut b = DofMap::builder(&bodies);

@@ -43,6 +43,9 @@ pub struct SolverOptions {
     pub correction_after: usize,
     /// A BFGS pair is kept only if yᵀs > `curvature_tol`·‖y‖‖s‖.
     pub curvature_tol: f64,
+    /// BFGS steps are damped by a line search once this many corrections
+    /// have fired (0: always; `usize::MAX`: never, as in the paper).
+    pub line_search_after: usize,
 }
 
 impl Default for SolverOptions {
@@ -54,6 +57,7 @@ impl Default for SolverOptions {
             max_iter: 300,
             correction_after: 8,
             curvature_tol: 1e-12,
+            line_search_after: 0,
         }
     }
 }
@@ -223,4 +227,55 @@ impl<'a> Tracker<'a> {
             factorisations,
         }
     }
+}
+
+/// The outcome of [`line_search`].
+pub(crate) struct Step {
+    pub alpha: f64,
+    pub cuts: usize,
+    pub u: Vec<f64>,
+    pub r: Vec<f64>,
+    pub state: crate::problem::ContactState,
+}
+
+const MAX_CUTS: usize = 30;
+const ARMIJO: f64 = 1e-4;
+
+/// Backtracking on ‖R‖ along `dir` from `u` (residual `r`): halve the step
+/// until ‖R(u + α dir)‖ ≤ (1 − 10⁻⁴ α)‖R(u)‖. At a kink of the active set
+/// the direction may not descend at all; then the best step tried is taken
+/// rather than an ever smaller one. With `enabled = false` the full step is
+/// taken.
+pub(crate) fn line_search(
+    problem: &Problem,
+    u: &[f64],
+    dir: &[f64],
+    r: &[f64],
+    enabled: bool,
+) -> Step {
+    let r_norm = norm(r);
+    let mut alpha = 1.0;
+    let mut best: Option<(f64, Step)> = None;
+    for cuts in 0..=MAX_CUTS {
+        let trial: Vec<f64> = u.iter().zip(dir).map(|(a, d)| a + alpha * d).collect();
+        let (tr, state) = problem.residual(&trial);
+        let tn = norm(&tr);
+        let step = Step {
+            alpha,
+            cuts,
+            u: trial,
+            r: tr,
+            state,
+        };
+        if !enabled || tn <= (1.0 - ARMIJO * alpha) * r_norm {
+            return step;
+        }
+        if best.as_ref().is_none_or(|b| tn < b.0) {
+            best = Some((tn, step));
+        }
+        alpha *= 0.5;
+    }
+    let (_, mut step) = best.expect("at least one trial");
+    step.cuts = MAX_CUTS;
+    step
 }

@@ -12,16 +12,10 @@
 
 use super::bfgs::secant_or_tied;
 use super::history::Event;
-use super::{norm, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD};
+use super::{line_search, norm, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD};
 use crate::error::Result;
 use crate::linsolve::Factoriser;
 use crate::problem::{Kernel, Problem};
-
-/// A line-search trial: (‖R‖, u, R, contact state, step length).
-type Trial = (f64, Vec<f64>, Vec<f64>, crate::problem::ContactState, f64);
-
-const MAX_CUTS: usize = 30;
-const ARMIJO: f64 = 1e-4;
 
 pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     let n = problem.n();
@@ -42,30 +36,11 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
         };
         factorisations += 1;
         let dir = tangent.solve(&r)?;
-        let r_norm = norm(&r);
-        let mut alpha = 1.0;
-        let mut cuts = 0;
-        let mut best: Option<Trial> = None;
-        let (alpha, trial_u, trial_r, state) = loop {
-            let trial: Vec<f64> = u.iter().zip(&dir).map(|(a, d)| a + alpha * d).collect();
-            let (tr, st) = problem.residual(&trial);
-            let tn = norm(&tr);
-            if tn <= (1.0 - ARMIJO * alpha) * r_norm || tracker.history.is_empty() {
-                break (alpha, trial, tr, st);
-            }
-            if best.as_ref().is_none_or(|b| tn < b.0) {
-                best = Some((tn, trial, tr, st, alpha));
-            }
-            if cuts == MAX_CUTS {
-                let (_, bu, br, bs, ba) = best.expect("at least one trial");
-                break (ba, bu, br, bs);
-            }
-            alpha *= 0.5;
-            cuts += 1;
-        };
-        if cuts > 0 {
-            events.push(Event::LineSearchCuts(cuts));
+        let step = line_search(problem, &u, &dir, &r, !tracker.history.is_empty());
+        if step.cuts > 0 {
+            events.push(Event::LineSearchCuts(step.cuts));
         }
+        let (alpha, trial_u, trial_r, state) = (step.alpha, step.u, step.r, step.state);
         let du: Vec<f64> = dir.iter().map(|d| alpha * d).collect();
         u = trial_u;
         r = trial_r;

@@ -6,7 +6,11 @@
 //! Timing columns live in files of their own (`*timings*.csv`), so that two
 //! runs produce identical tables everywhere else.
 
+pub mod error_vs_time;
 pub mod hertz;
+pub mod iga_vs_fem;
+pub mod solvers;
+pub mod stability;
 pub mod taylor;
 
 use std::path::{Path, PathBuf};
