@@ -244,6 +244,37 @@ pub fn markdown(rows: &[Row]) -> String {
     s
 }
 
+/// Both errors against the number of unknowns, log–log: L² solid, energy
+/// dashed, one colour per degree.
+pub fn plot(rows: &[Row], path: &std::path::Path) -> Result<()> {
+    use iga_contact::report::plot::{line_chart, Axes, Series};
+    let mut degrees: Vec<usize> = rows.iter().map(|r| r.degree).collect();
+    degrees.dedup();
+    let mut series = Vec::new();
+    for &p in &degrees {
+        let pts = |f: fn(&Row) -> f64| -> Vec<(f64, f64)> {
+            rows.iter()
+                .filter(|r| r.degree == p)
+                .map(|r| (r.dofs as f64, f(r)))
+                .collect()
+        };
+        series.push(Series::line(format!("L², p = {p}"), pts(|r| r.l2_error)).with_markers());
+        series.push(
+            Series::line(format!("energy, p = {p}"), pts(|r| r.energy_error))
+                .with_markers()
+                .dashed(),
+        );
+    }
+    let axes = Axes {
+        title: "Lamé cylinder: relative errors".into(),
+        x_label: "unknowns (free DOFs)".into(),
+        y_label: "relative error".into(),
+        log_x: true,
+        log_y: true,
+    };
+    line_chart(path, &axes, &series)
+}
+
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let problem = Lame::default();
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated/lame");
@@ -271,6 +302,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let table = markdown(&rows);
     iga_contact::report::atomic::write_text(out.join("convergence.csv"), &csv(&rows))?;
     iga_contact::report::atomic::write_text(out.join("convergence.md"), &table)?;
+    plot(&rows, &out.join("convergence.svg"))?;
     println!("{table}");
     if !failures.is_empty() {
         return Err(format!("rates below the expected ones:\n{}", failures.join("\n")).into());

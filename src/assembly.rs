@@ -109,13 +109,24 @@ pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
     let d = body.material.d_matrix();
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
     for qp in body.space.quadrature(el)? {
+        // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
-            for b in 0..n {
-                let k = btdb(qp.shape.grad[a], qp.shape.grad[b], &d);
+            let ga = qp.shape.grad[a];
+            for b in a..n {
+                let k = btdb(ga, qp.shape.grad[b], &d);
                 for i in 0..2 {
                     for j in 0..2 {
                         ke[(2 * a + i, 2 * b + j)] += qp.weight * k[i][j];
                     }
+                }
+            }
+        }
+    }
+    for a in 0..n {
+        for b in a + 1..n {
+            for i in 0..2 {
+                for j in 0..2 {
+                    ke[(2 * b + j, 2 * a + i)] = ke[(2 * a + i, 2 * b + j)];
                 }
             }
         }
@@ -129,6 +140,18 @@ pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
 pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> {
     let mut trip = Triplets::default();
     let mut lift = vec![0.0; map.n_free()];
+    let cap: usize = bodies
+        .iter()
+        .flat_map(|b| {
+            b.space
+                .elements
+                .iter()
+                .map(|e| 4 * e.cps.len() * e.cps.len())
+        })
+        .sum();
+    trip.rows.reserve(cap);
+    trip.cols.reserve(cap);
+    trip.vals.reserve(cap);
     for (bi, body) in bodies.iter().enumerate() {
         let kes: Vec<Result<DMatrix<f64>>> = (0..body.space.elements.len())
             .into_par_iter()

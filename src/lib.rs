@@ -18,6 +18,7 @@ pub mod nurbs;
 pub mod problem;
 pub mod quadrature;
 pub mod report;
+pub mod scene;
 pub mod solver;
 pub mod space;
 pub mod studies;

@@ -111,13 +111,8 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
     let mut corrections = 0;
     loop {
         let dir = update.apply(&r, |q| kernel.solve(q))?;
-        let step = line_search(
-            problem,
-            &u,
-            &dir,
-            &r,
-            corrections >= opts.line_search_after,
-        );
+        let damped = !tracker.history.is_empty() && corrections >= opts.line_search_after;
+        let step = line_search(problem, &u, &dir, &r, damped);
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
         let (r_new, state) = (step.r, step.state);

@@ -11,7 +11,7 @@ pub enum Event {
     SkippedUpdate { curvature: f64 },
     /// The line search halved the step this many times.
     LineSearchCuts(usize),
-    /// The active set was empty, so the kernel kept a stabilised tied term.
+    /// The active set was empty, so the tied kernel (17) replaced the singular secant (18).
     FloatingGuard,
 }
 

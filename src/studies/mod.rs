@@ -31,5 +31,26 @@ pub struct Study {
 
 /// Every study, in the order of the book.
 pub fn registry() -> Vec<Study> {
-    Vec::new()
+    vec![
+        Study {
+            name: "taylor",
+            run: |p| taylor::run(p).map(|_| ()),
+        },
+        Study {
+            name: "iga_vs_fem",
+            run: iga_vs_fem::run,
+        },
+        Study {
+            name: "error_vs_time",
+            run: error_vs_time::run,
+        },
+        Study {
+            name: "solvers",
+            run: solvers::run,
+        },
+        Study {
+            name: "stability",
+            run: stability::run,
+        },
+    ]
 }

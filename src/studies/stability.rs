@@ -29,11 +29,14 @@ enum Metric {
     NoContact,
 }
 
+/// Builds one case's problem.
+type Builder = Box<dyn Fn() -> Result<Problem>>;
+
 struct Case {
     name: String,
     theta: f64,
     penalty_factor: f64,
-    build: Box<dyn Fn() -> Result<Problem>>,
+    build: Builder,
     metric: Metric,
 }
 
@@ -167,7 +170,7 @@ fn cases(reference_8x8: f64) -> Vec<Case> {
         });
     }
     let t = Taylor::material();
-    let gap_cases: Vec<(&str, Box<dyn Fn() -> Result<Problem>>, Metric)> = vec![
+    let gap_cases: Vec<(&str, Builder, Metric)> = vec![
         (
             "taylor_open_gap_unloaded",
             Box::new(move || Taylor::default().build_with_gap(t, t, 0.0, 1e-2)),
@@ -342,13 +345,24 @@ fn fmt_err(e: Option<f64>) -> String {
 }
 
 /// Runs every case; `progress` is told each case as it finishes.
-pub fn atlas(mut progress: impl FnMut(usize, usize, &Row)) -> Result<Vec<Row>> {
+pub fn atlas(progress: impl FnMut(usize, usize, &Row)) -> Result<Vec<Row>> {
+    atlas_where(|_| true, progress)
+}
+
+/// Runs the cases whose name passes `keep`.
+pub fn atlas_where(
+    keep: impl Fn(&str) -> bool,
+    mut progress: impl FnMut(usize, usize, &Row),
+) -> Result<Vec<Row>> {
     let reference = {
         let p = Hertz::default().build()?;
         let s = solve(&p, &SolverOptions::default())?;
         peak_pressure(&p, &s)
     };
-    let all = cases(reference);
+    let all: Vec<Case> = cases(reference)
+        .into_iter()
+        .filter(|c| keep(&c.name))
+        .collect();
     let mut rows = Vec::with_capacity(all.len());
     for (k, case) in all.iter().enumerate() {
         let row = run_case(case);

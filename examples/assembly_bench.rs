@@ -1,0 +1,156 @@
+//! Assembly and factorisation timings for the Hertz half disk (p = 2).
+//!
+//! The half disk of radius 0.2 (plane strain, E = 2e7, ν = 0.1) with
+//! u_x = 0 on the symmetry line (`xi_min`) and u_y = 0 on the lower arc
+//! (`eta_min`), so that the stiffness is symmetric positive definite. For
+//! each mesh it times: stiffness assembly (triplets over the free DOFs),
+//! the sparsity pattern and CSC fill, Cholesky (symbolic + numeric, then
+//! numeric alone with the symbolic analysis reused) and LU for comparison.
+//!
+//! `cargo run --release --example assembly_bench [-- n1 n2 ...]` (default
+//! 64 256 elements per direction). Diagnostics: `BENCH_SPLIT=1` also times
+//! the element matrices and the quadrature alone; `BENCH_ASSEMBLY_ONLY=1`
+//! stops after the assembly (for profiling it).
+
+use iga_contact::assembly;
+use iga_contact::dofs::{Body, DofMap};
+use iga_contact::geometry::half_disk;
+use iga_contact::linsolve::{Factoriser, Method, Pattern};
+use iga_contact::material::{Material, Plane};
+use iga_contact::nurbs::Side;
+use iga_contact::space::Space;
+use std::time::Instant;
+
+struct Timing {
+    n: usize,
+    dofs: usize,
+    nnz: usize,
+    assembly: f64,
+    pattern: f64,
+    cholesky: f64,
+    cholesky_numeric: f64,
+    lu: f64,
+    residual: f64,
+}
+
+fn run(n: usize) -> iga_contact::Result<Timing> {
+    let patch = half_disk([0.0, 0.2], 0.2)?.k_refined(2, [n, n])?;
+    let bodies = vec![Body {
+        name: "half disk".into(),
+        space: Space::new(patch, None)?,
+        material: Material::new(2.0e7, 0.1, Plane::Strain)?,
+    }];
+    let mut builder = DofMap::builder(&bodies);
+    builder
+        .fix_side(0, Side::XiMin, 0, 0.0)?
+        .fix_side(0, Side::EtaMin, 1, 0.0)?;
+    let map = builder.build();
+
+    let t = Instant::now();
+    let (trip, _lift) = assembly::stiffness(&bodies, &map)?;
+    let assembly = t.elapsed().as_secs_f64();
+    if std::env::var_os("BENCH_ASSEMBLY_ONLY").is_some() {
+        eprintln!("assembly {assembly:.3} s, {} triplets", trip.len());
+        std::process::exit(0);
+    }
+    if std::env::var_os("BENCH_SPLIT").is_some() {
+        use rayon::prelude::*;
+        let t = Instant::now();
+        let ne = bodies[0].space.elements.len();
+        let s: f64 = (0..ne)
+            .into_par_iter()
+            .map(|e| assembly::element_stiffness(&bodies[0], e).map(|k| k[(0, 0)]))
+            .sum::<iga_contact::Result<f64>>()?;
+        eprintln!(
+            "  element matrices alone: {:.3} s ({s:.1e})",
+            t.elapsed().as_secs_f64()
+        );
+        let t = Instant::now();
+        let q: usize = (0..ne)
+            .into_par_iter()
+            .map(|e| {
+                bodies[0]
+                    .space
+                    .quadrature(&bodies[0].space.elements[e])
+                    .map(|q| q.len())
+            })
+            .sum::<iga_contact::Result<usize>>()?;
+        eprintln!(
+            "  quadrature alone: {:.3} s ({q} points)",
+            t.elapsed().as_secs_f64()
+        );
+    }
+
+    let t = Instant::now();
+    let pattern = Pattern::new(map.n_free(), &trip)?;
+    let k = pattern.matrix(&trip.vals)?;
+    let pattern_time = t.elapsed().as_secs_f64();
+    let nnz = k.symbolic().col_ptr()[k.ncols()];
+
+    let mut fact = Factoriser::default();
+    let t = Instant::now();
+    let llt = fact.factor(&k, Method::Cholesky)?;
+    let cholesky = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let llt2 = fact.factor(&k, Method::Cholesky)?;
+    let cholesky_numeric = t.elapsed().as_secs_f64();
+    drop(llt2);
+
+    // a check that the factor is usable: solve K x = K·1 and compare with 1
+    let ones = vec![1.0; map.n_free()];
+    let b = iga_contact::linsolve::mul(&k, &ones);
+    let x = llt.solve(&b)?;
+    let residual = x.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
+    drop(llt);
+
+    let t = Instant::now();
+    let lu = Factoriser::default().factor(&k, Method::Lu)?;
+    let lu_time = t.elapsed().as_secs_f64();
+    drop(lu);
+
+    Ok(Timing {
+        n,
+        dofs: map.n_free(),
+        nnz,
+        assembly,
+        pattern: pattern_time,
+        cholesky,
+        cholesky_numeric,
+        lu: lu_time,
+        residual,
+    })
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let sizes: Vec<usize> = {
+        let args: Vec<usize> = std::env::args()
+            .skip(1)
+            .map(|a| a.parse())
+            .collect::<Result<_, _>>()?;
+        if args.is_empty() {
+            vec![64, 256]
+        } else {
+            args
+        }
+    };
+    println!(
+        "| elements | DOFs | nnz | assembly s | pattern+fill s | Cholesky (sym+num) s | Cholesky (num) s | LU s | max |x−1| |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for n in sizes {
+        let t = run(n)?;
+        println!(
+            "| {n}×{n} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1e} |",
+            t.dofs,
+            t.nnz,
+            t.assembly,
+            t.pattern,
+            t.cholesky,
+            t.cholesky_numeric,
+            t.lu,
+            t.residual,
+            n = t.n
+        );
+    }
+    Ok(())
+}

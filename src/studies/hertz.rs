@@ -1,0 +1,1 @@
+//! Hertz study (being written).

@@ -1,0 +1,187 @@
+//! The command-line interface: exit codes (0 ok, 1 failure, 2 invalid
+//! input), one `error:` line on stderr, and lean output.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_iga-contact");
+
+fn scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenes")
+        .join(name)
+}
+
+/// A fresh, empty working directory for one test.
+fn workdir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Exactly one non-empty stderr line, starting with `error:`.
+#[track_caller]
+fn single_error_line(o: &Output) -> String {
+    let err = stderr(o);
+    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "stderr: {err}");
+    assert!(lines[0].starts_with("error: "), "stderr: {err}");
+    lines[0].to_string()
+}
+
+const INVALID: &str = r#"
+[[body]]
+name = "block"
+geometry = { rectangle = { x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 1.0 } }
+material = { young = -5.0, poisson = 0.3, plane = "strain" }
+"#;
+
+#[test]
+fn invalid_scene_exits_with_2_and_one_error_line_naming_the_key() {
+    let dir = workdir("invalid");
+    std::fs::write(dir.join("bad.toml"), INVALID).unwrap();
+    for cmd in ["run", "check"] {
+        let o = run(&dir, &[cmd, "bad.toml"]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(line.contains("bad.toml"), "{line}");
+        assert!(line.contains("`body[0].material.young` = -5"), "{line}");
+        assert!(stdout(&o).is_empty());
+    }
+    assert!(!dir.join("out").exists(), "a failed run created outputs");
+}
+
+#[test]
+fn unknown_key_exits_with_2() {
+    let dir = workdir("unknown-key");
+    let text = INVALID.replace("young = -5.0", "young = 5.0, colour = \"red\"");
+    std::fs::write(dir.join("typo.toml"), text).unwrap();
+    let o = run(&dir, &["check", "typo.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    let line = single_error_line(&o);
+    assert!(line.contains("`body[0].material.colour`"), "{line}");
+}
+
+#[test]
+fn toml_syntax_error_exits_with_2() {
+    let dir = workdir("syntax");
+    std::fs::write(dir.join("broken.toml"), "[[body]\nname = \"x\"\n").unwrap();
+    let o = run(&dir, &["check", "broken.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    let line = single_error_line(&o);
+    assert!(line.contains("line 1"), "{line}");
+}
+
+#[test]
+fn missing_scene_file_exits_with_2() {
+    let dir = workdir("missing");
+    let o = run(&dir, &["run", "nowhere.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    let line = single_error_line(&o);
+    assert!(line.contains("nowhere.toml"), "{line}");
+}
+
+#[test]
+fn minimal_scene_runs_and_writes_nothing() {
+    let dir = workdir("minimal");
+    let path = scene("minimal.toml");
+    let o = run(&dir, &["run", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert_eq!(out.lines().count(), 1, "{out}");
+    assert!(out.contains("converged"), "{out}");
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    // No outputs requested: not even the default `out/minimal` directory.
+    assert!(!dir.join("out").exists());
+}
+
+#[test]
+fn check_builds_without_solving() {
+    let dir = workdir("check");
+    for name in [
+        "taylor.toml",
+        "hertz.toml",
+        "hertz_fem_q2.toml",
+        "minimal.toml",
+    ] {
+        let path = scene(name);
+        let o = run(&dir, &["check", path.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        assert!(stdout(&o).contains("ok"), "{}", stdout(&o));
+    }
+    assert!(!dir.join("out").exists(), "check wrote files");
+}
+
+#[test]
+fn run_writes_to_the_default_directory_named_after_the_scene() {
+    let dir = workdir("default-out");
+    let path = scene("taylor.toml");
+    let o = run(&dir, &["run", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = dir.join("out").join("taylor");
+    for f in ["iterations.csv", "summary.toml", "solution.vtu"] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+}
+
+#[test]
+fn run_honours_out() {
+    let dir = workdir("explicit-out");
+    let path = scene("taylor.toml");
+    let o = run(
+        &dir,
+        &["run", path.to_str().unwrap(), "--out", "results/here"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(dir.join("results/here/summary.toml").is_file());
+    assert!(!dir.join("out").exists());
+}
+
+#[test]
+fn solver_failure_exits_with_1() {
+    let dir = workdir("solver-failure");
+    let text = std::fs::read_to_string(scene("hertz.toml"))
+        .unwrap()
+        .replace("max_iter = 300", "max_iter = 1");
+    std::fs::write(dir.join("short.toml"), text).unwrap();
+    let o = run(&dir, &["run", "short.toml"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let line = single_error_line(&o);
+    assert!(line.contains("iteration limit"), "{line}");
+    assert!(!dir.join("out").exists(), "a failed run wrote files");
+}
+
+#[test]
+fn reproduce_rejects_an_unknown_study() {
+    let dir = workdir("reproduce-unknown");
+    let o = run(&dir, &["reproduce", "--only", "no-such-study"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let line = single_error_line(&o);
+    assert!(line.contains("no-such-study"), "{line}");
+}
+
+#[test]
+fn usage_errors_exit_with_2() {
+    let dir = workdir("usage");
+    let o = run(&dir, &["frobnicate"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&dir, &["run"]);
+    assert_eq!(o.status.code(), Some(2));
+}
