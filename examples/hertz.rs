@@ -6,7 +6,10 @@ use iga_contact::problem::{Kernel, Problem};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 use std::time::Instant;
 fn main() {
-    for n in [8usize, 64, 128, 256] {
+    for n in std::env::args()
+        .skip(1)
+        .map(|a| a.parse::<usize>().unwrap())
+    {
         let h = Hertz {
             elements: n,
             ..Hertz::default()

@@ -12,6 +12,11 @@ fi
 echo "==> cargo run --release --bin iga-contact -- reproduce"
 cargo run --release --bin iga-contact -- reproduce
 
+# The Lamé verification of the elasticity chapter is not a contact study;
+# its example regenerates that chapter's table and figure.
+echo "==> cargo run --release --example lame"
+cargo run --release --example lame
+
 echo "==> mdbook build book"
 mdbook build book
 
