@@ -60,11 +60,17 @@ impl Problem {
                 "every degree of freedom is prescribed",
             ));
         }
-        let bulk_pattern = Pattern::new(n, &bulk)?;
-        let k = bulk_pattern.matrix(&bulk.vals)?;
+        // One pattern for everything: the bulk stiffness is stored in the
+        // kernels' pattern with zero contact entries, which saves a second
+        // symbolic analysis of the largest triplet set.
         let mut all = bulk.clone();
-        all.extend(Self::contact_triplets(&map, &points, |_| 1.0));
+        let contact = Self::contact_triplets(&map, &points, |_| 1.0);
+        let contact_len = contact.len();
+        all.extend(contact);
         let pattern = Pattern::new(n, &all)?;
+        let mut vals = bulk.vals.clone();
+        vals.resize(bulk.len() + contact_len, 0.0);
+        let k = pattern.matrix(&vals)?;
         Ok(Self {
             bodies,
             map,

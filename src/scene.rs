@@ -319,10 +319,11 @@ impl fmt::Display for RunReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "converged in {} iterations ({} corrections), {} DOFs, {}/{} contact points active, \
+            "converged in {} iterations ({} correction{}), {} DOFs, {}/{} contact points active, \
              contact force ({:.6e}, {:.6e}), {:.2} s",
             self.iterations,
             self.corrections,
+            if self.corrections == 1 { "" } else { "s" },
             self.dofs,
             self.active_points,
             self.contact_points,
@@ -349,7 +350,25 @@ struct Summary<'a> {
     active_points: usize,
     contact_force: [f64; 2],
     applied_force: [f64; 2],
-    solver: SolverOptions,
+    /// The solver options as TOML (a `usize::MAX` limit, which TOML cannot
+    /// hold, is written as the largest TOML integer).
+    solver: toml::Value,
+}
+
+/// `opts` as a TOML table, saturating integers beyond TOML's i64 range.
+fn solver_table(opts: &SolverOptions) -> toml::Value {
+    if let Ok(v) = toml::Value::try_from(opts) {
+        return v;
+    }
+    let mut clamped = *opts;
+    for v in [
+        &mut clamped.max_iter,
+        &mut clamped.correction_after,
+        &mut clamped.line_search_after,
+    ] {
+        *v = (*v).min(i64::MAX as usize);
+    }
+    toml::Value::try_from(clamped).unwrap_or_else(|_| toml::Value::String(format!("{opts:?}")))
 }
 
 // ---------------------------------------------------------------------------
@@ -1072,7 +1091,6 @@ impl Scene {
         if let Some(applied_force) = applied_force {
             let summary = Summary {
                 title,
-                solver: self.solver,
                 dofs: problem.n(),
                 iterations: history.len(),
                 corrections: history.corrections(),
@@ -1081,6 +1099,7 @@ impl Scene {
                 active_points,
                 contact_force,
                 applied_force,
+                solver: solver_table(&self.solver),
             };
             let text = toml::to_string(&summary)
                 .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;

@@ -165,6 +165,36 @@ fn every_shipped_scene_parses_and_builds() {
 }
 
 #[test]
+fn shipped_scenes_round_trip_through_toml() {
+    for name in [
+        "taylor.toml",
+        "hertz.toml",
+        "hertz_fem_q2.toml",
+        "minimal.toml",
+    ] {
+        let scene = Scene::from_toml_str(&scene_file(name)).unwrap();
+        let text = toml::to_string(&scene).unwrap();
+        let again = Scene::from_toml_str(&text).unwrap_or_else(|e| panic!("{name}: {e}\n{text}"));
+        assert_eq!(scene, again, "{name}");
+    }
+}
+
+#[test]
+fn summary_survives_solver_limits_beyond_toml_integers() {
+    let dir = tmp("summary-usize-max");
+    let mut scene = Scene::from_toml_str(&scene_file("minimal.toml")).unwrap();
+    scene.solver.line_search_after = usize::MAX;
+    scene.output.summary = true;
+    scene.run(&dir).unwrap();
+    let summary: toml::Table =
+        toml::from_str(&std::fs::read_to_string(dir.join(files::SUMMARY)).unwrap()).unwrap();
+    assert_eq!(
+        summary["solver"]["line_search_after"].as_integer(),
+        Some(i64::MAX)
+    );
+}
+
+#[test]
 fn taylor_scene_matches_the_benchmark() {
     let scene = Scene::from_toml_str(&scene_file("taylor.toml")).unwrap();
     let a = scene.build().unwrap();
@@ -172,7 +202,7 @@ fn taylor_scene_matches_the_benchmark() {
     assert_eq!(a.n(), b.n());
     assert_eq!(a.points.len(), b.points.len());
     let sa = solver::solve(&a, &scene.solver).unwrap();
-    let sb = solver::solve(&b, &SolverOptions::default()).unwrap();
+    let sb = solver::solve(&b, &scene.solver).unwrap();
     let scale = sb.full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     for (x, y) in sa.full.iter().zip(&sb.full) {
         assert!((x - y).abs() <= 1e-12 * scale, "{x} vs {y}");
@@ -193,7 +223,7 @@ fn hertz_scene_matches_the_benchmark() {
     let b = Hertz::default().build().unwrap();
     assert_eq!(a.n(), b.n());
     let sa = solver::solve(&a, &scene.solver).unwrap();
-    let sb = solver::solve(&b, &SolverOptions::default()).unwrap();
+    let sb = solver::solve(&b, &scene.solver).unwrap();
     let (fa, fb) = (a.contact_force(&sa.full), b.contact_force(&sb.full));
     assert!(
         (fa[1] - fb[1]).abs() <= 1e-10 * fb[1].abs(),
@@ -218,7 +248,7 @@ fn hertz_fem_scene_matches_the_benchmark() {
     .unwrap();
     assert_eq!(a.n(), b.n());
     let sa = solver::solve(&a, &scene.solver).unwrap();
-    let sb = solver::solve(&b, &SolverOptions::default()).unwrap();
+    let sb = solver::solve(&b, &scene.solver).unwrap();
     let (fa, fb) = (a.contact_force(&sa.full), b.contact_force(&sb.full));
     assert!(
         (fa[1] - fb[1]).abs() <= 1e-10 * fb[1].abs(),
