@@ -41,7 +41,13 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// Right-preconditioned GMRES (no restart) for A x = b with M⁻¹ = `prec`.
-fn gmres(a: &faer::sparse::SparseColMat<usize, f64>, prec: &Factor, b: &[f64], tol: f64, max: usize) -> (Vec<f64>, usize) {
+fn gmres(
+    a: &faer::sparse::SparseColMat<usize, f64>,
+    prec: &Factor,
+    b: &[f64],
+    tol: f64,
+    max: usize,
+) -> (Vec<f64>, usize) {
     let n = b.len();
     let beta = norm(b);
     let mut v: Vec<Vec<f64>> = vec![b.iter().map(|x| x / beta).collect()];
@@ -95,7 +101,11 @@ fn main() -> iga_contact::Result<()> {
     println!("| elements | dofs | LU (s) | Cholesky of P (s) | LU solve (ms) | GMRES iterations | GMRES solve (ms) | solves to break even |");
     println!("|---|---|---|---|---|---|---|---|");
     for n in [16, 64, 128] {
-        let p = Hertz { elements: n, ..Hertz::default() }.build()?;
+        let p = Hertz {
+            elements: n,
+            ..Hertz::default()
+        }
+        .build()?;
         let kt = p.kernel(Kernel::Tied)?;
         let t = Instant::now();
         let lu = Factoriser::default().factor(&kt, Method::Lu)?;
@@ -118,11 +128,21 @@ fn main() -> iga_contact::Result<()> {
             res = gmres(&kt, &ch, &b, 1e-12, 200);
         }
         let s_gm = t.elapsed().as_secs_f64() / reps as f64;
-        let diff = norm(&x_lu.iter().zip(&res.0).map(|(a, c)| a - c).collect::<Vec<_>>()) / norm(&x_lu);
+        let diff = norm(
+            &x_lu
+                .iter()
+                .zip(&res.0)
+                .map(|(a, c)| a - c)
+                .collect::<Vec<_>>(),
+        ) / norm(&x_lu);
         assert!(diff < 1e-8, "GMRES and LU disagree: {diff:.2e}");
         let gain = t_lu - t_ch;
         let loss = s_gm - s_lu;
-        let even = if gain <= 0.0 { "never".to_string() } else { format!("{:.0}", gain / loss.max(1e-12)) };
+        let even = if gain <= 0.0 {
+            "never".to_string()
+        } else {
+            format!("{:.0}", gain / loss.max(1e-12))
+        };
         println!(
             "| {n}×{n} | {} | {t_lu:.3} | {t_ch:.3} | {:.2} | {} | {:.2} | {even} |",
             p.n(),

@@ -7,10 +7,13 @@
 //! Cost per iteration: O(n k) for k pairs plus one solve.
 
 use super::history::Event;
-use super::{dot, line_search, norm, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD};
+use super::{
+    dot, line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD,
+};
 use crate::error::Result;
 use crate::linsolve::{Factor, Factoriser};
 use crate::problem::{Kernel, Problem};
+use std::rc::Rc;
 
 /// The stored (s, y) pairs of the inverse update.
 #[derive(Clone, Debug, Default)]
@@ -68,20 +71,45 @@ impl InverseUpdate {
     }
 }
 
-/// Factorises the secant kernel (18) at `u`, or — when no contact point is
-/// active and (18) would lose the support that contact gives — the tied
-/// kernel (17) instead, which is what [`Event::FloatingGuard`] records.
-pub(crate) fn secant_or_tied(
-    problem: &Problem,
-    fac: &mut Factoriser,
-    u: &[f64],
-    events: &mut Vec<Event>,
-) -> Result<Factor> {
-    if problem.active_points(u) == 0 && !problem.points.is_empty() {
-        events.push(Event::FloatingGuard);
-        fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)
-    } else {
-        fac.factor(&problem.kernel(Kernel::Secant(u))?, KERNEL_METHOD)
+/// The kernels of one solve. The tied kernel (17) is factorised once and
+/// kept: it starts the iteration and stands in for the secant kernel (18)
+/// whenever no contact point is active — then (18) is the bare stiffness,
+/// singular for a body that only contact holds, which is what
+/// [`Event::FloatingGuard`] records.
+pub(crate) struct Kernels<'a> {
+    problem: &'a Problem,
+    fac: Factoriser,
+    tied: Rc<Factor>,
+    pub factorisations: usize,
+}
+
+impl<'a> Kernels<'a> {
+    pub fn new(problem: &'a Problem) -> Result<Self> {
+        let mut fac = Factoriser::default();
+        let tied = Rc::new(fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)?);
+        Ok(Self {
+            problem,
+            fac,
+            tied,
+            factorisations: 1,
+        })
+    }
+
+    pub fn tied(&self) -> Rc<Factor> {
+        Rc::clone(&self.tied)
+    }
+
+    /// The secant kernel (18) at `u`, or the kept tied kernel if the active set is empty.
+    pub fn secant(&mut self, u: &[f64], events: &mut Vec<Event>) -> Result<Rc<Factor>> {
+        if self.problem.active_points(u) == 0 && !self.problem.points.is_empty() {
+            events.push(Event::FloatingGuard);
+            return Ok(self.tied());
+        }
+        self.factorisations += 1;
+        Ok(Rc::new(self.fac.factor(
+            &self.problem.kernel(Kernel::Secant(u))?,
+            KERNEL_METHOD,
+        )?))
     }
 }
 
@@ -98,21 +126,20 @@ pub(crate) fn secant_or_tied(
 /// Hertz meshes converge; `usize::MAX` gives the paper's undamped iteration.
 pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<Solution> {
     let n = problem.n();
-    let mut fac = Factoriser::default();
-    let mut kernel = fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)?;
-    let mut factorisations = 1;
+    let mut kernels = Kernels::new(problem)?;
+    let mut kernel = kernels.tied();
     let mut u = vec![0.0; n];
     let (mut r, _) = problem.residual(&u);
     let mut tracker = Tracker::new(problem, opts, norm(&r));
     if norm(&r) == 0.0 {
-        return Ok(tracker.finish(u, factorisations));
+        return Ok(tracker.finish(u, kernels.factorisations));
     }
     let mut update = InverseUpdate::default();
     let mut corrections = 0;
     loop {
         let dir = update.apply(&r, |q| kernel.solve(q))?;
         let damped = !tracker.history.is_empty() && corrections >= opts.line_search_after;
-        let step = line_search(problem, &u, &dir, &r, damped);
+        let step = line_search(problem, &u, &dir, &r, damped, Fallback::FullIfFloating);
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
         let (r_new, state) = (step.r, step.state);
@@ -126,16 +153,16 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
         }
         let k = tracker.history.len() + 1;
         let grew = norm(&r_new) > norm(&r);
-        if correct && k > opts.correction_after && grew && norm(&r_new).is_finite() {
+        let done = tracker.converged(&u, &du, &r_new);
+        if correct && !done && k > opts.correction_after && grew && norm(&r_new).is_finite() {
             events.push(Event::Correction);
             corrections += 1;
-            kernel = secant_or_tied(problem, &mut fac, &u, &mut events)?;
-            factorisations += 1;
+            kernel = kernels.secant(&u, &mut events)?;
             update.clear();
         }
         r = r_new;
         if let Status::Converged = tracker.record(&u, &du, &r, state.active, events)? {
-            return Ok(tracker.finish(u, factorisations));
+            return Ok(tracker.finish(u, kernels.factorisations));
         }
     }
 }

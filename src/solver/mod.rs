@@ -188,13 +188,20 @@ impl<'a> Tracker<'a> {
         if !rn.is_finite() || !un.is_finite() || rel > 1e12 {
             return Err(self.fail("the iteration diverged"));
         }
-        if rel <= self.opts.rtol && un <= self.opts.utol * norm(u).max(f64::MIN_POSITIVE) {
+        if self.converged(u, du, r) {
             return Ok(Status::Converged);
         }
         if self.history.len() >= self.opts.max_iter {
             return Err(self.fail("iteration limit reached"));
         }
         Ok(Status::Continue)
+    }
+
+    /// The stopping rule: ‖R‖ ≤ rtol·‖R₀‖ and ‖Δu‖ ≤ utol·‖u‖.
+    pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64]) -> bool {
+        let r0 = self.history.initial_residual;
+        let rel = if r0 > 0.0 { norm(r) / r0 } else { 0.0 };
+        rel <= self.opts.rtol && norm(du) <= self.opts.utol * norm(u).max(f64::MIN_POSITIVE)
     }
 
     /// The error for a failed solve, diagnosing a floating body.
@@ -241,21 +248,35 @@ pub(crate) struct Step {
 const MAX_CUTS: usize = 30;
 const ARMIJO: f64 = 1e-4;
 
+/// What a line search does when no step length decreases ‖R‖ enough.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Fallback {
+    /// Take the best step tried (Newton: a full step could cycle).
+    Best,
+    /// As `Best`, except from an iterate with no active contact point:
+    /// there (a body floating above the obstacle) no step along the BFGS
+    /// direction reduces ‖R‖, and a tiny step would stall the iteration for
+    /// good, so the full step is taken and the correction handles the rest.
+    FullIfFloating,
+}
+
 /// Backtracking on ‖R‖ along `dir` from `u` (residual `r`): halve the step
 /// until ‖R(u + α dir)‖ ≤ (1 − 10⁻⁴ α)‖R(u)‖. At a kink of the active set
-/// the direction may not descend at all; then the best step tried is taken
-/// rather than an ever smaller one. With `enabled = false` the full step is
-/// taken.
+/// the direction may not descend at all; then `fallback` decides. With
+/// `enabled = false` the full step is taken.
 pub(crate) fn line_search(
     problem: &Problem,
     u: &[f64],
     dir: &[f64],
     r: &[f64],
     enabled: bool,
+    fallback: Fallback,
 ) -> Step {
     let r_norm = norm(r);
     let mut alpha = 1.0;
     let mut best: Option<(f64, Step)> = None;
+    let mut full: Option<Step> = None;
+    let floating = fallback == Fallback::FullIfFloating && problem.active_points(u) == 0;
     for cuts in 0..=MAX_CUTS {
         let trial: Vec<f64> = u.iter().zip(dir).map(|(a, d)| a + alpha * d).collect();
         let (tr, state) = problem.residual(&trial);
@@ -270,12 +291,17 @@ pub(crate) fn line_search(
         if !enabled || tn <= (1.0 - ARMIJO * alpha) * r_norm {
             return step;
         }
-        if best.as_ref().is_none_or(|b| tn < b.0) {
+        if cuts == 0 && fallback == Fallback::FullIfFloating && floating {
+            full = Some(step);
+        } else if best.as_ref().is_none_or(|b| tn < b.0) {
             best = Some((tn, step));
         }
         alpha *= 0.5;
     }
-    let (_, mut step) = best.expect("at least one trial");
+    let mut step = match full {
+        Some(s) => s,
+        None => best.expect("at least one trial").1,
+    };
     step.cuts = MAX_CUTS;
     step
 }

@@ -10,33 +10,37 @@
 //! The first step uses the tied kernel (17), exactly like BFGS: at u = 0 an
 //! open initial gap leaves the active set empty and (18) singular.
 
-use super::bfgs::secant_or_tied;
+use super::bfgs::Kernels;
 use super::history::Event;
-use super::{line_search, norm, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD};
+use super::{line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker};
 use crate::error::Result;
-use crate::linsolve::Factoriser;
-use crate::problem::{Kernel, Problem};
+use crate::problem::Problem;
 
 pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     let n = problem.n();
-    let mut fac = Factoriser::default();
-    let mut factorisations = 0;
     let mut u = vec![0.0; n];
     let (mut r, _) = problem.residual(&u);
     let mut tracker = Tracker::new(problem, opts, norm(&r));
     if norm(&r) == 0.0 {
-        return Ok(tracker.finish(u, factorisations));
+        return Ok(tracker.finish(u, 0));
     }
+    let mut kernels = Kernels::new(problem)?;
     loop {
         let mut events = Vec::new();
         let tangent = if tracker.history.is_empty() {
-            fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)?
+            kernels.tied()
         } else {
-            secant_or_tied(problem, &mut fac, &u, &mut events)?
+            kernels.secant(&u, &mut events)?
         };
-        factorisations += 1;
         let dir = tangent.solve(&r)?;
-        let step = line_search(problem, &u, &dir, &r, !tracker.history.is_empty());
+        let step = line_search(
+            problem,
+            &u,
+            &dir,
+            &r,
+            !tracker.history.is_empty(),
+            Fallback::Best,
+        );
         if step.cuts > 0 {
             events.push(Event::LineSearchCuts(step.cuts));
         }
@@ -45,7 +49,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
         u = trial_u;
         r = trial_r;
         if let Status::Converged = tracker.record(&u, &du, &r, state.active, events)? {
-            return Ok(tracker.finish(u, factorisations));
+            return Ok(tracker.finish(u, kernels.factorisations));
         }
     }
 }

@@ -37,6 +37,10 @@ pub fn registry() -> Vec<Study> {
             run: |p| taylor::run(p).map(|_| ()),
         },
         Study {
+            name: "hertz",
+            run: |p| hertz::run(p).map(|_| ()),
+        },
+        Study {
             name: "iga_vs_fem",
             run: iga_vs_fem::run,
         },
