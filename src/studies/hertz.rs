@@ -50,10 +50,6 @@ pub const CONVERGENCE_ELEMENTS: [usize; 6] = [4, 8, 16, 32, 64, 128];
 pub const REFERENCE: (usize, usize) = (3, 128);
 /// Meshes of the per-phase timing benchmark (p = 2).
 pub const TIMING_ELEMENTS: [usize; 3] = [8, 64, 256];
-/// The default (damped) BFGS is timed only up to this mesh: from 192²
-/// on it stalls at a floating iterate (see the chapter), so a timing
-/// would only measure 300 refactorisations of the same kernel.
-pub const DEFAULT_BFGS_TIMING_LIMIT: usize = 128;
 /// Meshes of the pressure-profile figure.
 pub const PROFILE_ELEMENTS: [usize; 2] = [8, 64];
 
@@ -1039,10 +1035,8 @@ pub fn run_with(out: &Path, timing_elements: &[usize]) -> Result<HertzSummary> {
         } else {
             1
         };
-        if n <= DEFAULT_BFGS_TIMING_LIMIT {
-            let opts = SolverOptions::with_kind(SolverKind::Bfgs);
-            timings.push(time_phases(2, n, "bfgs", &opts, repeats)?);
-        }
+        let opts = SolverOptions::with_kind(SolverKind::Bfgs);
+        timings.push(time_phases(2, n, "bfgs", &opts, repeats)?);
         timings.push(time_phases(2, n, "bfgs_paper", &paper_bfgs(), repeats)?);
     }
     if !timings.is_empty() {
