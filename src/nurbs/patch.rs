@@ -227,6 +227,38 @@ impl NurbsPatch {
         }
     }
 
+    /// `n + 1` points of the physical curve ξ = `c` (dir = 0) or η = `c`
+    /// (dir = 1), for drawing knot lines and outlines.
+    pub fn iso_curve(&self, dir: usize, c: f64, n: usize) -> Vec<[f64; 2]> {
+        let k = &self.knots[1 - dir];
+        let (a, b) = (k.first(), k.last());
+        (0..=n)
+            .map(|i| {
+                let t = a + (b - a) * i as f64 / n as f64;
+                if dir == 0 {
+                    self.point(c, t)
+                } else {
+                    self.point(t, c)
+                }
+            })
+            .collect()
+    }
+
+    /// The closed boundary of the patch, counter-clockwise in parameter
+    /// space, with `n` segments per side.
+    pub fn outline(&self, n: usize) -> Vec<[f64; 2]> {
+        let (k0, k1) = (&self.knots[0], &self.knots[1]);
+        let mut o = self.iso_curve(1, k1.first(), n);
+        o.extend(self.iso_curve(0, k0.last(), n));
+        let mut top = self.iso_curve(1, k1.last(), n);
+        top.reverse();
+        o.extend(top);
+        let mut left = self.iso_curve(0, k0.first(), n);
+        left.reverse();
+        o.extend(left);
+        o
+    }
+
     /// Affine map of the control net (rigid motions, scaling).
     pub fn transformed(&self, f: impl Fn([f64; 2]) -> [f64; 2]) -> Self {
         let mut out = self.clone();

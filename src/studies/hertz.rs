@@ -21,7 +21,7 @@ use crate::benchmarks::{Hertz, HertzAnalytic, HERTZ_RADIUS};
 use crate::contact::{contact_points, ContactPair, Integration};
 use crate::error::{Error, Result};
 use crate::linsolve::{Factoriser, Method};
-use crate::nurbs::{NurbsPatch, Side};
+use crate::nurbs::Side;
 use crate::problem::{Kernel, Problem};
 use crate::report::atomic::write_text;
 use crate::report::plot::{
@@ -621,34 +621,6 @@ pub fn first_correction(h: &History) -> Option<usize> {
 
 // ------------------------------------------------------------ figures
 
-fn iso_curve(patch: &NurbsPatch, dir: usize, c: f64, n: usize) -> Vec<[f64; 2]> {
-    let k = &patch.knots[1 - dir];
-    let (a, b) = (k.first(), k.last());
-    (0..=n)
-        .map(|i| {
-            let t = a + (b - a) * i as f64 / n as f64;
-            if dir == 0 {
-                patch.point(c, t)
-            } else {
-                patch.point(t, c)
-            }
-        })
-        .collect()
-}
-
-fn outline(patch: &NurbsPatch) -> Vec<[f64; 2]> {
-    let (k0, k1) = (&patch.knots[0], &patch.knots[1]);
-    let mut o = iso_curve(patch, 1, k1.first(), 64);
-    o.extend(iso_curve(patch, 0, k0.last(), 64));
-    let mut top = iso_curve(patch, 1, k1.last(), 64);
-    top.reverse();
-    o.extend(top);
-    let mut left = iso_curve(patch, 0, k0.first(), 64);
-    left.reverse();
-    o.extend(left);
-    o
-}
-
 fn floor_line() -> Polyline {
     Polyline::new(
         vec![[-0.05, 0.0], [HERTZ_RADIUS + 0.05, 0.0]],
@@ -665,7 +637,7 @@ fn model_figure(problem: &Problem, path: &Path) -> Result<()> {
     for dir in 0..2 {
         for b in patch.knots[dir].breaks() {
             lines.push(
-                Polyline::new(iso_curve(patch, dir, b, 32), LineKind::Thin, 0).labelled("elements"),
+                Polyline::new(patch.iso_curve(dir, b, 32), LineKind::Thin, 0).labelled("elements"),
             );
         }
     }
@@ -739,7 +711,8 @@ fn uy_figure(problem: &Problem, full: &[f64], sub: usize, path: &Path) -> Result
         }
     }
     let overlay = vec![
-        Polyline::new(outline(&space.patch), LineKind::Dashed, BLACK_INDEX).labelled("undeformed"),
+        Polyline::new(space.patch.outline(64), LineKind::Dashed, BLACK_INDEX)
+            .labelled("undeformed"),
         floor_line(),
     ];
     let [e0, e1] = space.n_elements();

@@ -528,23 +528,6 @@ fn minus(s: &str) -> String {
 
 // ---------------------------------------------------------------- figures
 
-/// Points of the physical curve ξ = const (dir = 0) or η = const (dir = 1)
-/// of `patch` through the parameter `c`.
-fn iso_curve(patch: &crate::nurbs::NurbsPatch, dir: usize, c: f64, n: usize) -> Vec<[f64; 2]> {
-    let k = &patch.knots[1 - dir];
-    let (a, b) = (k.first(), k.last());
-    (0..=n)
-        .map(|i| {
-            let t = a + (b - a) * i as f64 / n as f64;
-            if dir == 0 {
-                patch.point(c, t)
-            } else {
-                patch.point(t, c)
-            }
-        })
-        .collect()
-}
-
 /// Element boundaries (knot lines) of every body, in the colour of the body.
 fn element_lines(problem: &Problem, style: LineKind, mono: bool) -> Vec<Polyline> {
     let mut lines = Vec::new();
@@ -553,7 +536,7 @@ fn element_lines(problem: &Problem, style: LineKind, mono: bool) -> Vec<Polyline
         let color = if mono { BLACK_INDEX } else { bi };
         for dir in 0..2 {
             for b in patch.knots[dir].breaks() {
-                let mut l = Polyline::new(iso_curve(patch, dir, b, 16), style, color);
+                let mut l = Polyline::new(patch.iso_curve(dir, b, 16), style, color);
                 if !mono {
                     l = l.labelled(format!("{}: elements", body.name));
                 }
@@ -648,16 +631,9 @@ fn displacement_figure(c: &CaseRun, path: &Path) -> Result<()> {
     let mut overlay = Vec::new();
     for body in &c.problem.bodies {
         let p = &body.space.patch;
-        let (k0, k1) = (&p.knots[0], &p.knots[1]);
-        let mut outline = iso_curve(p, 1, k1.first(), 16);
-        outline.extend(iso_curve(p, 0, k0.last(), 16));
-        let mut top = iso_curve(p, 1, k1.last(), 16);
-        top.reverse();
-        outline.extend(top);
-        let mut left = iso_curve(p, 0, k0.first(), 16);
-        left.reverse();
-        outline.extend(left);
-        overlay.push(Polyline::new(outline, LineKind::Dashed, BLACK_INDEX).labelled("undeformed"));
+        overlay.push(
+            Polyline::new(p.outline(16), LineKind::Dashed, BLACK_INDEX).labelled("undeformed"),
+        );
     }
     field_figure(
         path,
