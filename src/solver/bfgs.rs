@@ -129,7 +129,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
     let mut kernels = Kernels::new(problem)?;
     let mut kernel = kernels.tied();
     let mut u = vec![0.0; n];
-    let (mut r, _) = problem.residual(&u);
+    let (mut r, mut state) = problem.residual(&u);
     let mut tracker = Tracker::new(problem, opts, norm(&r));
     if norm(&r) == 0.0 {
         return Ok(tracker.finish(u, kernels.factorisations));
@@ -139,10 +139,17 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
     loop {
         let dir = update.apply(&r, |q| kernel.solve(q))?;
         let damped = !tracker.history.is_empty() && corrections >= opts.line_search_after;
-        let step = line_search(problem, &u, &dir, &r, damped, Fallback::FullIfFloating);
+        // from a floating iterate, backtracking cannot help (see `Fallback::Full`)
+        let fallback = if state.active == 0 {
+            Fallback::Full
+        } else {
+            Fallback::Best
+        };
+        let step = line_search(problem, &u, &dir, &r, damped, fallback);
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
-        let (r_new, state) = (step.r, step.state);
+        let r_new = step.r;
+        state = step.state;
         let mut events = Vec::new();
         if step.cuts > 0 {
             events.push(Event::LineSearchCuts(step.cuts));

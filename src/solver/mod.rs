@@ -253,11 +253,11 @@ const ARMIJO: f64 = 1e-4;
 pub(crate) enum Fallback {
     /// Take the best step tried (Newton: a full step could cycle).
     Best,
-    /// As `Best`, except from an iterate with no active contact point:
-    /// there (a body floating above the obstacle) no step along the BFGS
-    /// direction reduces ‖R‖, and a tiny step would stall the iteration for
-    /// good, so the full step is taken and the correction handles the rest.
-    FullIfFloating,
+    /// Take the full step. BFGS asks for this from an iterate with no
+    /// active contact point: there (a body floating above the obstacle) no
+    /// step along the BFGS direction reduces ‖R‖, a tiny step would stall
+    /// the iteration for good, and the correction handles the rest.
+    Full,
 }
 
 /// Backtracking on ‖R‖ along `dir` from `u` (residual `r`): halve the step
@@ -276,7 +276,6 @@ pub(crate) fn line_search(
     let mut alpha = 1.0;
     let mut best: Option<(f64, Step)> = None;
     let mut full: Option<Step> = None;
-    let floating = fallback == Fallback::FullIfFloating && problem.active_points(u) == 0;
     for cuts in 0..=MAX_CUTS {
         let trial: Vec<f64> = u.iter().zip(dir).map(|(a, d)| a + alpha * d).collect();
         let (tr, state) = problem.residual(&trial);
@@ -291,7 +290,7 @@ pub(crate) fn line_search(
         if !enabled || tn <= (1.0 - ARMIJO * alpha) * r_norm {
             return step;
         }
-        if cuts == 0 && fallback == Fallback::FullIfFloating && floating {
+        if cuts == 0 && fallback == Fallback::Full {
             full = Some(step);
         } else if best.as_ref().is_none_or(|b| tn < b.0) {
             best = Some((tn, step));
