@@ -165,23 +165,21 @@ pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> 
     Ok((trip, lift))
 }
 
-/// External loads of Eq. (3).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Load {
-    /// A constant body force per unit volume on body `body`.
-    BodyForce { body: usize, force: [f64; 2] },
-    /// A constant traction vector on a side.
+/// External loads of Eq. (3). `B` names the body: its index here, its
+/// name in a scene file (`Load<String>`, resolved by [`Load::map_body`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Load<B = usize> {
+    /// A constant body force per unit volume.
+    BodyForce { body: B, force: [f64; 2] },
+    /// A constant traction vector (force per unit length) on a side.
     Traction {
-        body: usize,
+        body: B,
         side: Side,
         traction: [f64; 2],
     },
     /// A uniform pressure on a side, acting against the outward normal.
-    Pressure {
-        body: usize,
-        side: Side,
-        pressure: f64,
-    },
+    Pressure { body: B, side: Side, pressure: f64 },
 }
 
 /// Scatters a local load vector into the free DOFs.
@@ -200,12 +198,41 @@ fn add_shape_times(fe: &mut DVector<f64>, shape: &Shape, v: [f64; 2], weight: f6
     }
 }
 
-impl Load {
-    fn body(&self) -> usize {
+impl<B> Load<B> {
+    /// The body the load acts on.
+    pub fn body(&self) -> &B {
         match self {
             Load::BodyForce { body, .. }
             | Load::Traction { body, .. }
-            | Load::Pressure { body, .. } => *body,
+            | Load::Pressure { body, .. } => body,
+        }
+    }
+
+    /// The same load with its body reference mapped (a name to an index).
+    pub fn map_body<C>(&self, f: impl FnOnce(&B) -> C) -> Load<C> {
+        match self {
+            Load::BodyForce { body, force } => Load::BodyForce {
+                body: f(body),
+                force: *force,
+            },
+            Load::Traction {
+                body,
+                side,
+                traction,
+            } => Load::Traction {
+                body: f(body),
+                side: *side,
+                traction: *traction,
+            },
+            Load::Pressure {
+                body,
+                side,
+                pressure,
+            } => Load::Pressure {
+                body: f(body),
+                side: *side,
+                pressure: *pressure,
+            },
         }
     }
 }
@@ -214,7 +241,7 @@ impl Load {
 pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<f64>> {
     let mut f = vec![0.0; map.n_free()];
     for load in loads {
-        let bi = load.body();
+        let bi = *load.body();
         let body = bodies.get(bi).ok_or_else(|| {
             Error::invalid(
                 "load.body",

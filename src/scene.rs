@@ -177,24 +177,17 @@ pub struct SupportSpec {
 }
 
 /// One `[[load]]`, a table with one key, the kind:
-/// `pressure = { body = "upper", side = "eta_max", pressure = 1e8 }`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum LoadSpec {
-    /// Force per unit volume.
-    BodyForce { body: String, force: [f64; 2] },
-    /// Force per unit length on a side.
-    Traction {
-        body: String,
-        side: Side,
-        traction: [f64; 2],
-    },
-    /// Uniform pressure on a side, against its outward normal.
-    Pressure {
-        body: String,
-        side: Side,
-        pressure: f64,
-    },
+/// `pressure = { body = "upper", side = "eta_max", pressure = 1e8 }`; the
+/// library's [`Load`] with the body given by name.
+pub type LoadSpec = Load<String>;
+
+/// The TOML key of a load's kind, for error paths.
+fn load_kind<B>(l: &Load<B>) -> &'static str {
+    match l {
+        Load::BodyForce { .. } => "body_force",
+        Load::Traction { .. } => "traction",
+        Load::Pressure { .. } => "pressure",
+    }
 }
 
 /// One `[[contact]]`.
@@ -789,22 +782,14 @@ impl Scene {
             finite(format!("{f}.value"), s.value)?;
         }
         for (i, l) in self.loads.iter().enumerate() {
+            let f = format!("load[{i}].{}", load_kind(l));
+            self.resolve(&names, format!("{f}.body"), l.body())?;
             match l {
-                LoadSpec::BodyForce { body, force } => {
-                    let f = format!("load[{i}].body_force");
-                    self.resolve(&names, format!("{f}.body"), body)?;
-                    finite_point(&format!("{f}.force"), *force)?;
+                Load::BodyForce { force, .. } => finite_point(&format!("{f}.force"), *force)?,
+                Load::Traction { traction, .. } => {
+                    finite_point(&format!("{f}.traction"), *traction)?
                 }
-                LoadSpec::Traction { body, traction, .. } => {
-                    let f = format!("load[{i}].traction");
-                    self.resolve(&names, format!("{f}.body"), body)?;
-                    finite_point(&format!("{f}.traction"), *traction)?;
-                }
-                LoadSpec::Pressure { body, pressure, .. } => {
-                    let f = format!("load[{i}].pressure");
-                    self.resolve(&names, format!("{f}.body"), body)?;
-                    finite(format!("{f}.pressure"), *pressure)?;
-                }
+                Load::Pressure { pressure, .. } => finite(format!("{f}.pressure"), *pressure)?,
             }
         }
         for (i, c) in self.contacts.iter().enumerate() {
@@ -961,40 +946,16 @@ impl Scene {
         let map = dofs.build();
         let mut loads = Vec::with_capacity(self.loads.len());
         for (i, l) in self.loads.iter().enumerate() {
-            loads.push(match l {
-                LoadSpec::BodyForce { body, force } => Load::BodyForce {
-                    body: idx(body),
-                    force: *force,
-                },
-                LoadSpec::Traction {
-                    body,
-                    side,
-                    traction,
-                } => Load::Traction {
-                    body: idx(body),
-                    side: *side,
-                    traction: *traction,
-                },
-                LoadSpec::Pressure {
-                    body,
-                    side,
-                    pressure,
-                } => {
-                    let b = idx(body);
-                    if degenerate_side(&bodies[b].space.patch, *side) {
-                        return Err(Error::invalid(
-                            format!("load[{i}].pressure.side"),
-                            side.name(),
-                            format!("this side of body {body:?} is collapsed to a point"),
-                        ));
-                    }
-                    Load::Pressure {
-                        body: b,
-                        side: *side,
-                        pressure: *pressure,
-                    }
+            if let Load::Pressure { body, side, .. } = l {
+                if degenerate_side(&bodies[idx(body)].space.patch, *side) {
+                    return Err(Error::invalid(
+                        format!("load[{i}].pressure.side"),
+                        side.name(),
+                        format!("this side of body {body:?} is collapsed to a point"),
+                    ));
                 }
-            });
+            }
+            loads.push(l.map_body(|b| idx(b)));
         }
         let mut pairs = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
