@@ -82,8 +82,8 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
     }
 
     let t = Instant::now();
-    let pattern = Pattern::new(map.n_free(), &trip)?;
-    let k = pattern.matrix(&trip.vals)?;
+    let pattern = Pattern::new(map.n_free(), &[&trip])?;
+    let k = pattern.matrix(&[&trip.vals])?;
     let pattern_time = t.elapsed().as_secs_f64();
     let nnz = k.symbolic().col_ptr()[k.ncols()];
 

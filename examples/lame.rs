@@ -124,7 +124,7 @@ impl Lame {
         };
         let f = assembly::load_vector(&bodies, &map, &[load])?;
         let rhs: Vec<f64> = f.iter().zip(&lift).map(|(f, l)| f - l).collect();
-        let k = Pattern::new(map.n_free(), &trip)?.matrix(&trip.vals)?;
+        let k = Pattern::new(map.n_free(), &[&trip])?.matrix(&[&trip.vals])?;
         let u_free = Factoriser::default()
             .factor(&k, Method::Cholesky)?
             .solve(&rhs)?;

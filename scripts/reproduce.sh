@@ -12,10 +12,15 @@ fi
 echo "==> cargo run --release --bin iga-contact -- reproduce"
 cargo run --release --bin iga-contact -- reproduce
 
-# The Lamé verification of the elasticity chapter is not a contact study;
-# its example regenerates that chapter's table and figure.
+# The Lamé verification of the elasticity chapter and the kernel
+# benchmark are not contact studies; their examples regenerate their
+# chapters' tables and figures.
 echo "==> cargo run --release --example lame"
 cargo run --release --example lame
+
+# The kernel-factorisation comparison of "Starting and correcting BFGS".
+echo "==> cargo run --release --example kernel_factorisation"
+cargo run --release --example kernel_factorisation
 
 echo "==> mdbook build book"
 mdbook build book

@@ -255,12 +255,20 @@ pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<
                 for (i, c) in force.iter().enumerate() {
                     crate::error::finite(&format!("load.body_force[{i}]"), *c)?;
                 }
-                for el in &space.elements {
-                    let mut fe = DVector::zeros(2 * el.cps.len());
-                    for qp in space.quadrature(el)? {
-                        add_shape_times(&mut fe, &qp.shape, force, qp.weight);
-                    }
-                    scatter_vector(map, &map.element_dofs(bi, &el.cps), &fe, &mut f);
+                // elements in parallel, scattered in order: deterministic
+                let fes: Vec<Result<DVector<f64>>> = space
+                    .elements
+                    .par_iter()
+                    .map(|el| {
+                        let mut fe = DVector::zeros(2 * el.cps.len());
+                        for qp in space.quadrature(el)? {
+                            add_shape_times(&mut fe, &qp.shape, force, qp.weight);
+                        }
+                        Ok(fe)
+                    })
+                    .collect();
+                for (el, fe) in space.elements.iter().zip(fes) {
+                    scatter_vector(map, &map.element_dofs(bi, &el.cps), &fe?, &mut f);
                 }
             }
             Load::Traction { side, .. } | Load::Pressure { side, .. } => {

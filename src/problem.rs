@@ -8,7 +8,8 @@ use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::linsolve::{mul, Pattern};
-use faer::sparse::SparseColMat;
+use faer::sparse::{SparseColMat, Triplet};
+use nalgebra::DMatrix;
 
 /// Which approximate tangent to build.
 #[derive(Clone, Copy, Debug)]
@@ -29,8 +30,20 @@ pub struct Problem {
     pub rhs: Vec<f64>,
     /// Bulk stiffness over the free DOFs.
     pub k: SparseColMat<usize, f64>,
-    bulk: Triplets,
+    /// The bulk stiffness triplet values, in the order of the pattern.
+    bulk: Vec<f64>,
+    /// The kernels' pattern: bulk triplets, then the contact blocks.
     pattern: Pattern,
+}
+
+/// A θ = 0 kernel written as S + E_R M: see [`Problem::kernel_split`].
+pub struct KernelSplit {
+    /// S: the bulk stiffness plus the penalty part of the active points.
+    pub spd: SparseColMat<usize, f64>,
+    /// R: the free DOFs of the contact trace of the active points.
+    pub rows: Vec<usize>,
+    /// M, `rows.len()` × n.
+    pub coupling: SparseColMat<usize, f64>,
 }
 
 /// Summary of the contact state at one displacement.
@@ -63,14 +76,10 @@ impl Problem {
         // One pattern for everything: the bulk stiffness is stored in the
         // kernels' pattern with zero contact entries, which saves a second
         // symbolic analysis of the largest triplet set.
-        let mut all = bulk.clone();
-        let contact = Self::contact_triplets(&map, &points, |_| 1.0);
-        let contact_len = contact.len();
-        all.extend(contact);
-        let pattern = Pattern::new(n, &all)?;
-        let mut vals = bulk.vals.clone();
-        vals.resize(bulk.len() + contact_len, 0.0);
-        let k = pattern.matrix(&vals)?;
+        let contact = Self::contact_triplets(&map, &points, |_, cp| local_matrix(cp, 1.0));
+        let pattern = Pattern::new(n, &[&bulk, &contact])?;
+        let k = pattern.matrix(&[&bulk.vals, &vec![0.0; contact.len()]])?;
+        let bulk = bulk.vals;
         Ok(Self {
             bodies,
             map,
@@ -90,37 +99,94 @@ impl Problem {
     fn contact_triplets(
         map: &DofMap,
         points: &[ContactPoint],
-        h: impl Fn(&ContactPoint) -> f64,
+        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
     ) -> Triplets {
         let mut t = Triplets::default();
         let mut scratch = vec![0.0; map.n_free()];
-        for cp in points {
-            t.add_block(
-                map,
-                &cp.dofs,
-                &cp.dofs,
-                &local_matrix(cp, h(cp)),
-                &mut scratch,
-            );
+        for (q, cp) in points.iter().enumerate() {
+            t.add_block(map, &cp.dofs, &cp.dofs, &local(q, cp), &mut scratch);
         }
         t
+    }
+
+    /// H per contact point: 1 everywhere for the tied kernel (17), H(P(u))
+    /// for the secant kernel (18)–(19).
+    fn activity(&self, kind: Kernel) -> Vec<f64> {
+        match kind {
+            Kernel::Tied => vec![1.0; self.points.len()],
+            Kernel::Secant(u) => {
+                let full = self.map.expand(u);
+                self.points
+                    .iter()
+                    .map(|cp| heaviside(cp.p(&full)))
+                    .collect()
+            }
+        }
+    }
+
+    /// A matrix of the kernels' pattern: the bulk stiffness plus `contact`.
+    fn with_bulk(&self, contact: Triplets) -> Result<SparseColMat<usize, f64>> {
+        self.pattern.matrix(&[&self.bulk, &contact.vals])
     }
 
     /// The kernel matrix: bulk stiffness plus the contact matrix of `kind`.
     /// Same sparsity pattern for every kind, so one symbolic factorisation
     /// serves them all.
     pub fn kernel(&self, kind: Kernel) -> Result<SparseColMat<usize, f64>> {
-        let contact = match kind {
-            Kernel::Tied => Self::contact_triplets(&self.map, &self.points, |_| 1.0),
-            Kernel::Secant(u) => {
-                let full = self.map.expand(u);
-                Self::contact_triplets(&self.map, &self.points, |cp| heaviside(cp.p(&full)))
+        let h = self.activity(kind);
+        self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
+            local_matrix(cp, h[q])
+        }))
+    }
+
+    /// The kernel of `kind` split as S + E_R M for
+    /// [`crate::linsolve::Factoriser::factor_low_rank`], when every point
+    /// has θ = 0 (otherwise `None`). There the point matrix is
+    /// H w (γ jn jnᵀ − jn snᵀ): its first term is symmetric positive
+    /// semidefinite and goes into S = K + Σ H w γ jn jnᵀ; the second has
+    /// non-zero rows only where jn ≠ 0, the contact trace, so it is
+    /// E_R M with R the trace DOFs of the active points and
+    /// M = −Σ H w jn[R] snᵀ.
+    pub fn kernel_split(&self, kind: Kernel) -> Result<Option<KernelSplit>> {
+        if self.points.iter().any(|cp| cp.theta != 0.0) {
+            return Ok(None);
+        }
+        let h = self.activity(kind);
+        let spd = self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
+            let c = h[q] * cp.weight * cp.gamma;
+            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| c * cp.jn[a] * cp.jn[b])
+        }))?;
+        let n = self.n();
+        let mut row_of = vec![usize::MAX; n];
+        let mut rows = Vec::new();
+        let mut coupling = Vec::new();
+        for (q, cp) in self.points.iter().enumerate() {
+            if h[q] == 0.0 {
+                continue;
             }
-        };
-        let mut vals = Vec::with_capacity(self.bulk.len() + contact.len());
-        vals.extend_from_slice(&self.bulk.vals);
-        vals.extend_from_slice(&contact.vals);
-        self.pattern.matrix(&vals)
+            for (a, &da) in cp.dofs.iter().enumerate() {
+                let Some(i) = self.map.free(da).filter(|_| cp.jn[a] != 0.0) else {
+                    continue;
+                };
+                if row_of[i] == usize::MAX {
+                    row_of[i] = rows.len();
+                    rows.push(i);
+                }
+                for (b, &db) in cp.dofs.iter().enumerate() {
+                    if let Some(j) = self.map.free(db) {
+                        let v = -h[q] * cp.weight * cp.jn[a] * cp.sn[b];
+                        coupling.push(Triplet::new(row_of[i], j, v));
+                    }
+                }
+            }
+        }
+        let coupling = SparseColMat::try_new_from_triplets(rows.len(), n, &coupling)
+            .map_err(|e| Error::Singular(format!("cannot build the trace coupling: {e:?}")))?;
+        Ok(Some(KernelSplit {
+            spd,
+            rows,
+            coupling,
+        }))
     }
 
     /// Number of contact points with P(u) ≤ 0 at the free displacement `u`.

@@ -48,8 +48,8 @@ fn solve(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Vec<f64> {
     let (trip, lift) = assembly::stiffness(bodies, map).unwrap();
     let f = assembly::load_vector(bodies, map, loads).unwrap();
     let rhs: Vec<f64> = f.iter().zip(&lift).map(|(a, b)| a - b).collect();
-    let pattern = Pattern::new(map.n_free(), &trip).unwrap();
-    let k = pattern.matrix(&trip.vals).unwrap();
+    let pattern = Pattern::new(map.n_free(), &[&trip]).unwrap();
+    let k = pattern.matrix(&[&trip.vals]).unwrap();
     let factor = Factoriser::default().factor(&k, Method::Cholesky).unwrap();
     map.expand(&factor.solve(&rhs).unwrap())
 }

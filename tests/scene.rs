@@ -180,6 +180,15 @@ fn shipped_scenes_round_trip_through_toml() {
 }
 
 #[test]
+fn the_kernel_factorisation_is_chosen_in_the_solver_table() {
+    let text = base_with("kind = \"bfgs\"", "kind = \"bfgs\"\nfactorisation = \"lu\"");
+    let scene = Scene::from_toml_str(&text).unwrap();
+    assert_eq!(scene.solver.factorisation, solver::Factorisation::Lu);
+    let scene = Scene::from_toml_str(&base_with("", "")).unwrap();
+    assert_eq!(scene.solver.factorisation, solver::Factorisation::Auto);
+}
+
+#[test]
 fn summary_survives_solver_limits_beyond_toml_integers() {
     let dir = tmp("summary-usize-max");
     let mut scene = Scene::from_toml_str(&scene_file("minimal.toml")).unwrap();
@@ -444,6 +453,8 @@ fn type_errors_name_their_path() {
     rejects(&text, "body[0].refine.elements", "[2]");
     let text = base_with("kind = \"bfgs\"", "kind = \"lbfgs\"");
     rejects(&text, "solver.kind", "\"lbfgs\"");
+    let text = base_with("kind = \"bfgs\"", "kind = \"bfgs\"\nfactorisation = \"cholesky\"");
+    rejects(&text, "solver.factorisation", "\"cholesky\"");
     let text = base_with("plane = \"stress\"", "plane = \"strainn\"");
     rejects(&text, "body[0].material.plane", "\"strainn\"");
 }

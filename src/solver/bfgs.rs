@@ -7,13 +7,10 @@
 //! Cost per iteration: O(n k) for k pairs plus one solve.
 
 use super::history::Event;
-use super::{
-    dot, line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker, KERNEL_METHOD,
-};
+use super::kernel::Kernels;
+use super::{dot, line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker};
 use crate::error::Result;
-use crate::linsolve::{Factor, Factoriser};
-use crate::problem::{Kernel, Problem};
-use std::rc::Rc;
+use crate::problem::Problem;
 
 /// The stored (s, y) pairs of the inverse update.
 #[derive(Clone, Debug, Default)]
@@ -71,48 +68,6 @@ impl InverseUpdate {
     }
 }
 
-/// The kernels of one solve. The tied kernel (17) is factorised once and
-/// kept: it starts the iteration and stands in for the secant kernel (18)
-/// whenever no contact point is active — then (18) is the bare stiffness,
-/// singular for a body that only contact holds, which is what
-/// [`Event::FloatingGuard`] records.
-pub(crate) struct Kernels<'a> {
-    problem: &'a Problem,
-    fac: Factoriser,
-    tied: Rc<Factor>,
-    pub factorisations: usize,
-}
-
-impl<'a> Kernels<'a> {
-    pub fn new(problem: &'a Problem) -> Result<Self> {
-        let mut fac = Factoriser::default();
-        let tied = Rc::new(fac.factor(&problem.kernel(Kernel::Tied)?, KERNEL_METHOD)?);
-        Ok(Self {
-            problem,
-            fac,
-            tied,
-            factorisations: 1,
-        })
-    }
-
-    pub fn tied(&self) -> Rc<Factor> {
-        Rc::clone(&self.tied)
-    }
-
-    /// The secant kernel (18) at `u`, or the kept tied kernel if the active set is empty.
-    pub fn secant(&mut self, u: &[f64], events: &mut Vec<Event>) -> Result<Rc<Factor>> {
-        if self.problem.active_points(u) == 0 && !self.problem.points.is_empty() {
-            events.push(Event::FloatingGuard);
-            return Ok(self.tied());
-        }
-        self.factorisations += 1;
-        Ok(Rc::new(self.fac.factor(
-            &self.problem.kernel(Kernel::Secant(u))?,
-            KERNEL_METHOD,
-        )?))
-    }
-}
-
 /// BFGS from the tied kernel (17); with `correct`, the paper's rule: after
 /// `correction_after` iterations, whenever ‖R‖ grows, refactorise the
 /// kernel as the secant matrix (18) at the current iterate and drop the pairs.
@@ -126,7 +81,7 @@ impl<'a> Kernels<'a> {
 /// Hertz meshes converge; `usize::MAX` gives the paper's undamped iteration.
 pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<Solution> {
     let n = problem.n();
-    let mut kernels = Kernels::new(problem)?;
+    let mut kernels = Kernels::new(problem, opts.factorisation)?;
     let mut kernel = kernels.tied();
     let mut u = vec![0.0; n];
     let (mut r, mut state) = problem.residual(&u);

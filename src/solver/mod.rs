@@ -9,12 +9,13 @@
 
 pub mod bfgs;
 pub mod history;
+pub mod kernel;
 pub mod newton;
 
 use crate::error::{Error, Result};
-use crate::linsolve::Method;
 use crate::problem::Problem;
 use history::{Event, History, Iteration};
+pub use kernel::Factorisation;
 use serde::{Deserialize, Serialize};
 
 /// Which nonlinear solver to run.
@@ -46,6 +47,8 @@ pub struct SolverOptions {
     /// BFGS steps are damped by a line search once this many corrections
     /// have fired (0: always; `usize::MAX`: never, as in the paper).
     pub line_search_after: usize,
+    /// How the kernels (17)–(18) are factorised. Both ways are exact.
+    pub factorisation: Factorisation,
 }
 
 impl Default for SolverOptions {
@@ -58,6 +61,7 @@ impl Default for SolverOptions {
             correction_after: 8,
             curvature_tol: 1e-12,
             line_search_after: 0,
+            factorisation: Factorisation::Auto,
         }
     }
 }
@@ -118,10 +122,6 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
         SolverKind::Newton => newton::solve(problem, opts),
     }
 }
-
-/// The factorisation method for the kernels: LU, since (17) and (18) are
-/// non-symmetric for θ ≠ 1.
-pub(crate) const KERNEL_METHOD: Method = Method::Lu;
 
 pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()

@@ -10,8 +10,8 @@
 //! The first step uses the tied kernel (17), exactly like BFGS: at u = 0 an
 //! open initial gap leaves the active set empty and (18) singular.
 
-use super::bfgs::Kernels;
 use super::history::Event;
+use super::kernel::Kernels;
 use super::{line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker};
 use crate::error::Result;
 use crate::problem::Problem;
@@ -24,7 +24,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     if norm(&r) == 0.0 {
         return Ok(tracker.finish(u, 0));
     }
-    let mut kernels = Kernels::new(problem)?;
+    let mut kernels = Kernels::new(problem, opts.factorisation)?;
     loop {
         let mut events = Vec::new();
         let tangent = if tracker.history.is_empty() {

@@ -20,7 +20,7 @@
 use crate::benchmarks::{Hertz, HertzAnalytic, HERTZ_RADIUS};
 use crate::contact::{contact_points, ContactPair, Integration};
 use crate::error::{Error, Result};
-use crate::linsolve::{Factoriser, Method};
+use crate::linsolve::Factoriser;
 use crate::nurbs::Side;
 use crate::problem::{Kernel, Problem};
 use crate::report::atomic::write_text;
@@ -30,7 +30,8 @@ use crate::report::plot::{
 };
 use crate::report::vtu::sample_bodies;
 use crate::solver::history::{Event, History};
-use crate::solver::{solve, Solution, SolverKind, SolverOptions};
+use crate::solver::kernel::factor_kernel;
+use crate::solver::{solve, Factorisation, Solution, SolverKind, SolverOptions};
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::Path;
@@ -50,6 +51,9 @@ pub const CONVERGENCE_ELEMENTS: [usize; 6] = [4, 8, 16, 32, 64, 128];
 pub const REFERENCE: (usize, usize) = (3, 128);
 /// Meshes of the per-phase timing benchmark (p = 2).
 pub const TIMING_ELEMENTS: [usize; 3] = [8, 64, 256];
+/// The LU comparison row (`bfgs_lu`) is timed up to this mesh only: at
+/// 256² the LU factors need about 8 GB.
+pub const LU_TIMING_MAX_ELEMENTS: usize = 64;
 /// Meshes of the pressure-profile figure.
 pub const PROFILE_ELEMENTS: [usize; 2] = [8, 64];
 
@@ -457,11 +461,12 @@ pub struct Timing {
     pub degree: usize,
     pub elements: usize,
     pub dofs: usize,
-    /// `bfgs` (the default, damped) or `bfgs_paper` (full steps).
+    /// `bfgs` (the default: damped, low-rank kernel factorisation),
+    /// `bfgs_paper` (full steps) or `bfgs_lu` (the default with LU kernels).
     pub solver: &'static str,
     /// `Problem::new`: stiffness, load, contact points, sparsity patterns.
     pub assembly: f64,
-    /// The tied kernel (17) and its LU (symbolic + numeric).
+    /// The tied kernel (17) and its factorisation (symbolic + numeric).
     pub first_factorisation: f64,
     /// The solve minus [`Timing::first_factorisation`]: iterations,
     /// corrections (refactorisations) and line searches.
@@ -500,10 +505,12 @@ pub fn time_phases(
         let problem = problem(degree, elements)?;
         asm.push(t.elapsed().as_secs_f64());
         let t = Instant::now();
-        {
-            let kernel = problem.kernel(Kernel::Tied)?;
-            let _factor = Factoriser::default().factor(&kernel, Method::Lu)?;
-        }
+        factor_kernel(
+            &problem,
+            &mut Factoriser::default(),
+            Kernel::Tied,
+            opts.factorisation,
+        )?;
         fac.push(t.elapsed().as_secs_f64());
         let t = Instant::now();
         let solution = solve(&problem, opts)?;
@@ -1011,6 +1018,13 @@ pub fn run_with(out: &Path, timing_elements: &[usize]) -> Result<HertzSummary> {
         let opts = SolverOptions::with_kind(SolverKind::Bfgs);
         timings.push(time_phases(2, n, "bfgs", &opts, repeats)?);
         timings.push(time_phases(2, n, "bfgs_paper", &paper_bfgs(), repeats)?);
+        if n <= LU_TIMING_MAX_ELEMENTS {
+            let lu = SolverOptions {
+                factorisation: Factorisation::Lu,
+                ..opts
+            };
+            timings.push(time_phases(2, n, "bfgs_lu", &lu, repeats)?);
+        }
     }
     if !timings.is_empty() {
         write_text(out.join("timings.csv"), &timings_csv(&timings))?;
@@ -1136,10 +1150,10 @@ impl fmt::Display for HertzSummary {
                 "dofs",
                 "solver",
                 "assembly",
-                "1st LU",
+                "1st fact.",
                 "iterations",
                 "its",
-                "LUs",
+                "fact",
                 "per it",
                 "total"
             )?;

@@ -1,0 +1,187 @@
+//! The kernels (17)–(18) factorised two exact ways: sparse LU of the
+//! assembled matrix, and Cholesky of its symmetric positive definite part
+//! with the Sherman–Morrison–Woodbury correction of the trace rows.
+
+use iga_contact::benchmarks::{Hertz, Taylor};
+use iga_contact::contact::Integration;
+use iga_contact::linsolve::{mul, Factor, Factoriser, Method};
+use iga_contact::problem::{Kernel, Problem};
+use iga_contact::solver::kernel::{factor_kernel, Factorisation};
+use iga_contact::solver::{solve, SolverKind, SolverOptions};
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn rough(n: usize, mut seed: u64) -> Vec<f64> {
+    (0..n)
+        .map(|_| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        })
+        .collect()
+}
+
+fn hertz(elements: usize, theta: f64) -> Problem {
+    Hertz {
+        elements,
+        theta,
+        ..Hertz::default()
+    }
+    .build()
+    .unwrap()
+}
+
+/// A displacement near the solution with a mixed active set.
+fn mixed_iterate(p: &Problem) -> Vec<f64> {
+    let s = solve(p, &SolverOptions::with_kind(SolverKind::Newton)).unwrap();
+    let umax = s.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let u: Vec<f64> =
+        s.u.iter()
+            .zip(rough(p.n(), 3))
+            .map(|(a, e)| a + 1e-3 * umax * e)
+            .collect();
+    let active = p.active_points(&u);
+    assert!(active > 0 && active < p.points.len(), "active {active}");
+    u
+}
+
+fn diff(a: &[f64], b: &[f64]) -> f64 {
+    let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
+    norm(&d) / norm(b)
+}
+
+#[test]
+fn the_split_reassembles_the_kernel() {
+    let p = hertz(8, 0.0);
+    let u = mixed_iterate(&p);
+    let mut ranks = Vec::new();
+    for kind in [Kernel::Tied, Kernel::Secant(&u)] {
+        let split = p.kernel_split(kind).unwrap().expect("θ = 0 splits");
+        let v = rough(p.n(), 11);
+        let mut got = mul(&split.spd, &v);
+        for (&i, m) in split.rows.iter().zip(mul(&split.coupling, &v)) {
+            got[i] += m;
+        }
+        let want = mul(&p.kernel(kind).unwrap(), &v);
+        assert!(diff(&got, &want) <= 1e-13, "{:.2e}", diff(&got, &want));
+        // the non-symmetric part lives on the trace rows: a thin layer
+        assert!(split.rows.len() * 10 < p.n(), "r = {}", split.rows.len());
+        ranks.push(split.rows.len());
+    }
+    // only the active points' trace rows are corrected
+    assert!(ranks[1] < ranks[0], "ranks {ranks:?}");
+}
+
+#[test]
+fn the_low_rank_solve_equals_lu() {
+    let p = hertz(16, 0.0);
+    let u = mixed_iterate(&p);
+    for kind in [Kernel::Tied, Kernel::Secant(&u)] {
+        let mut fac = Factoriser::default();
+        let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto).unwrap();
+        assert!(
+            matches!(low, Factor::LowRank(_)),
+            "Auto takes the low-rank path"
+        );
+        let lu = factor_kernel(&p, &mut fac, kind, Factorisation::Lu).unwrap();
+        assert!(matches!(lu, Factor::Lu(_)));
+        let b = rough(p.n(), 5);
+        let (x_low, x_lu) = (low.solve(&b).unwrap(), lu.solve(&b).unwrap());
+        assert!(diff(&x_low, &x_lu) <= 1e-10, "{:.2e}", diff(&x_low, &x_lu));
+        let k = p.kernel(kind).unwrap();
+        let res: Vec<f64> = mul(&k, &x_low).iter().zip(&b).map(|(a, c)| a - c).collect();
+        assert!(
+            norm(&res) <= 1e-10 * norm(&b),
+            "{:.2e}",
+            norm(&res) / norm(&b)
+        );
+    }
+}
+
+#[test]
+fn other_thetas_fall_back_to_lu() {
+    for theta in [1.0, -1.0] {
+        let p = hertz(8, theta);
+        assert!(p.kernel_split(Kernel::Tied).unwrap().is_none());
+        let f = factor_kernel(
+            &p,
+            &mut Factoriser::default(),
+            Kernel::Tied,
+            Factorisation::Auto,
+        )
+        .unwrap();
+        assert!(matches!(f, Factor::Lu(_)), "θ = {theta}");
+    }
+}
+
+#[test]
+fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
+    // lifted clear of the floor: no active point, S = K is singular
+    let p = Hertz {
+        elements: 4,
+        ..Hertz::default()
+    }
+    .build_lifted(Hertz::material(), 1.0, 0.01)
+    .unwrap();
+    let u = vec![0.0; p.n()];
+    assert_eq!(p.active_points(&u), 0);
+    let split = p.kernel_split(Kernel::Secant(&u)).unwrap().unwrap();
+    assert!(split.rows.is_empty());
+    let err = Factoriser::default()
+        .factor_low_rank(&split.spd, &split.rows, &split.coupling)
+        .err()
+        .expect("a singular S is refused");
+    assert_eq!(err.kind(), "singular_kernel", "{err}");
+    println!("{err}");
+}
+
+#[test]
+fn both_factorisations_give_the_same_solutions() {
+    let taylor = Taylor {
+        integration: Integration::Segment,
+        ..Taylor::default()
+    }
+    .build()
+    .unwrap();
+    for (name, p) in [("hertz 8²", hertz(8, 0.0)), ("taylor", taylor)] {
+        for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+            let run = |how| {
+                solve(
+                    &p,
+                    &SolverOptions {
+                        factorisation: how,
+                        ..SolverOptions::with_kind(kind)
+                    },
+                )
+                .unwrap()
+            };
+            let (a, b) = (run(Factorisation::Auto), run(Factorisation::Lu));
+            assert!(
+                diff(&a.u, &b.u) <= 1e-10,
+                "{name} {kind:?}: {:.2e}",
+                diff(&a.u, &b.u)
+            );
+            assert_eq!(a.history.len(), b.history.len(), "{name} {kind:?}");
+        }
+    }
+}
+
+/// The Cholesky path of the symmetric part alone, for contrast: the
+/// assembled θ = 0 kernel is not symmetric, so Cholesky of it would solve
+/// a different system.
+#[test]
+fn cholesky_of_the_assembled_kernel_would_be_wrong() {
+    let p = hertz(8, 0.0);
+    let k = p.kernel(Kernel::Tied).unwrap();
+    let b = rough(p.n(), 9);
+    let x = Factoriser::default()
+        .factor(&k, Method::Cholesky)
+        .and_then(|f| f.solve(&b));
+    if let Ok(x) = x {
+        let res: Vec<f64> = mul(&k, &x).iter().zip(&b).map(|(a, c)| a - c).collect();
+        assert!(norm(&res) > 1e-6 * norm(&b), "the kernel looked symmetric");
+    }
+}
