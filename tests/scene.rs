@@ -453,7 +453,10 @@ fn type_errors_name_their_path() {
     rejects(&text, "body[0].refine.elements", "[2]");
     let text = base_with("kind = \"bfgs\"", "kind = \"lbfgs\"");
     rejects(&text, "solver.kind", "\"lbfgs\"");
-    let text = base_with("kind = \"bfgs\"", "kind = \"bfgs\"\nfactorisation = \"cholesky\"");
+    let text = base_with(
+        "kind = \"bfgs\"",
+        "kind = \"bfgs\"\nfactorisation = \"cholesky\"",
+    );
     rejects(&text, "solver.factorisation", "\"cholesky\"");
     let text = base_with("plane = \"stress\"", "plane = \"strainn\"");
     rejects(&text, "body[0].material.plane", "\"strainn\"");
