@@ -101,6 +101,29 @@ fn the_low_rank_solve_equals_lu() {
     }
 }
 
+/// Why θ = 1 gets no Cholesky path although its kernel is symmetric: at
+/// the empirical penalty, and even at 100 times it, the symmetric Nitsche
+/// tied kernel of the Hertz disk is indefinite.
+#[test]
+fn the_symmetric_theta_one_kernel_is_indefinite() {
+    for factor in [1.0, 100.0] {
+        let p = Hertz {
+            elements: 8,
+            theta: 1.0,
+            penalty_factor: factor,
+            ..Hertz::default()
+        }
+        .build()
+        .unwrap();
+        let k = p.kernel(Kernel::Tied).unwrap();
+        let err = Factoriser::default()
+            .factor(&k, Method::Cholesky)
+            .err()
+            .expect("indefinite");
+        assert_eq!(err.kind(), "singular_kernel", "{err}");
+    }
+}
+
 #[test]
 fn other_thetas_fall_back_to_lu() {
     for theta in [1.0, -1.0] {
