@@ -109,6 +109,7 @@ fn main() -> iga_contact::Result<()> {
                 &mut Factoriser::default(),
                 Kernel::Tied,
                 Factorisation::Lu,
+                &mut Vec::new(),
             )
         });
         let lu = lu?;
@@ -118,6 +119,7 @@ fn main() -> iga_contact::Result<()> {
                 &mut Factoriser::default(),
                 Kernel::Tied,
                 Factorisation::Auto,
+                &mut Vec::new(),
             )
         });
         let low = low?;

@@ -5,7 +5,9 @@
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::contact::Integration;
 use iga_contact::linsolve::{mul, Factor, Factoriser, Method};
+use iga_contact::material::Material;
 use iga_contact::problem::{Kernel, Problem};
+use iga_contact::solver::history::Event;
 use iga_contact::solver::kernel::{factor_kernel, Factorisation};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 
@@ -81,12 +83,14 @@ fn the_low_rank_solve_equals_lu() {
     let u = mixed_iterate(&p);
     for kind in [Kernel::Tied, Kernel::Secant(&u)] {
         let mut fac = Factoriser::default();
-        let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto).unwrap();
+        let mut events = Vec::new();
+        let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto, &mut events).unwrap();
+        assert!(events.is_empty(), "{events:?}");
         assert!(
             matches!(low, Factor::LowRank(_)),
             "Auto takes the low-rank path"
         );
-        let lu = factor_kernel(&p, &mut fac, kind, Factorisation::Lu).unwrap();
+        let lu = factor_kernel(&p, &mut fac, kind, Factorisation::Lu, &mut events).unwrap();
         assert!(matches!(lu, Factor::Lu(_)));
         let b = rough(p.n(), 5);
         let (x_low, x_lu) = (low.solve(&b).unwrap(), lu.solve(&b).unwrap());
@@ -129,14 +133,17 @@ fn other_thetas_fall_back_to_lu() {
     for theta in [1.0, -1.0] {
         let p = hertz(8, theta);
         assert!(p.kernel_split(Kernel::Tied).unwrap().is_none());
+        let mut events = Vec::new();
         let f = factor_kernel(
             &p,
             &mut Factoriser::default(),
             Kernel::Tied,
             Factorisation::Auto,
+            &mut events,
         )
         .unwrap();
         assert!(matches!(f, Factor::Lu(_)), "θ = {theta}");
+        assert!(events.is_empty(), "LU by design is no fallback: {events:?}");
     }
 }
 
@@ -158,7 +165,42 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
         .err()
         .expect("a singular S is refused");
     assert_eq!(err.kind(), "singular_kernel", "{err}");
-    println!("{err}");
+    // through the solvers' entry point the refusal is logged, and LU runs
+    let mut events = Vec::new();
+    let _ = factor_kernel(
+        &p,
+        &mut Factoriser::default(),
+        Kernel::Secant(&u),
+        Factorisation::Auto,
+        &mut events,
+    );
+    assert_eq!(events, vec![Event::KernelLuFallback]);
+}
+
+#[test]
+fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
+    // a contrast of 10⁴ makes S much worse conditioned than the kernel
+    let upper = Material {
+        young: Taylor::material().young * 1e4,
+        ..Taylor::material()
+    };
+    let p = Taylor {
+        integration: Integration::Segment,
+        ..Taylor::default()
+    }
+    .build_with(Taylor::material(), upper, 1.0)
+    .unwrap();
+    let s = solve(&p, &SolverOptions::default()).unwrap();
+    assert!(s.history.count(|e| *e == Event::KernelRefined) >= 1);
+    let lu = solve(
+        &p,
+        &SolverOptions {
+            factorisation: Factorisation::Lu,
+            ..SolverOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(diff(&s.u, &lu.u) <= 1e-9, "{:.2e}", diff(&s.u, &lu.u));
 }
 
 #[test]

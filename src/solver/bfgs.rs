@@ -105,7 +105,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
         u = step.u;
         let r_new = step.r;
         state = step.state;
-        let mut events = Vec::new();
+        let mut events = kernels.take_startup_events();
         if step.cuts > 0 {
             events.push(Event::LineSearchCuts(step.cuts));
         }

@@ -13,6 +13,12 @@ pub enum Event {
     LineSearchCuts(usize),
     /// The active set was empty, so the tied kernel (17) replaced the singular secant (18).
     FloatingGuard,
+    /// A kernel factorised by Cholesky plus the low-rank correction failed
+    /// the plain accuracy check, so its solves refine iteratively.
+    KernelRefined,
+    /// The low-rank kernel factorisation was refused (S not positive
+    /// definite, or inaccurate even with refinement); LU took over.
+    KernelLuFallback,
 }
 
 impl fmt::Display for Event {
@@ -24,6 +30,8 @@ impl fmt::Display for Event {
             }
             Event::LineSearchCuts(n) => write!(f, "line search ×{n}"),
             Event::FloatingGuard => write!(f, "floating guard"),
+            Event::KernelRefined => write!(f, "kernel refined"),
+            Event::KernelLuFallback => write!(f, "kernel by LU"),
         }
     }
 }

@@ -29,19 +29,28 @@ pub enum Factorisation {
 }
 
 /// Factorises the kernel `kind` of `problem` as `how` asks, reusing the
-/// symbolic analyses kept in `fac`.
+/// symbolic analyses kept in `fac`. A low-rank factorisation that needed
+/// refinement, or was refused in favour of LU, is logged in `events`
+/// ([`Event::KernelRefined`], [`Event::KernelLuFallback`]); LU chosen
+/// because θ ≠ 0 is the design, not an event.
 pub fn factor_kernel(
     problem: &Problem,
     fac: &mut Factoriser,
     kind: Kernel,
     how: Factorisation,
+    events: &mut Vec<Event>,
 ) -> Result<Factor> {
     if how == Factorisation::Auto {
         if let Some(split) = problem.kernel_split(kind)? {
             match fac.factor_low_rank(&split.spd, &split.rows, &split.coupling) {
-                Ok(f) => return Ok(f),
+                Ok(f) => {
+                    if matches!(&f, Factor::LowRank(l) if l.refines()) {
+                        events.push(Event::KernelRefined);
+                    }
+                    return Ok(f);
+                }
                 // not positive definite, or ill-conditioned: LU decides
-                Err(Error::Singular(_)) => {}
+                Err(Error::Singular(_)) => events.push(Event::KernelLuFallback),
                 Err(e) => return Err(e),
             }
         }
@@ -59,20 +68,35 @@ pub(crate) struct Kernels<'a> {
     how: Factorisation,
     fac: Factoriser,
     tied: Rc<Factor>,
+    /// Events of the tied factorisation, for the first iteration's record.
+    startup: Vec<Event>,
     pub factorisations: usize,
 }
 
 impl<'a> Kernels<'a> {
     pub fn new(problem: &'a Problem, how: Factorisation) -> Result<Self> {
         let mut fac = Factoriser::default();
-        let tied = Rc::new(factor_kernel(problem, &mut fac, Kernel::Tied, how)?);
+        let mut startup = Vec::new();
+        let tied = Rc::new(factor_kernel(
+            problem,
+            &mut fac,
+            Kernel::Tied,
+            how,
+            &mut startup,
+        )?);
         Ok(Self {
             problem,
             how,
             fac,
             tied,
+            startup,
             factorisations: 1,
         })
+    }
+
+    /// The events of the tied factorisation, once.
+    pub fn take_startup_events(&mut self) -> Vec<Event> {
+        std::mem::take(&mut self.startup)
     }
 
     pub fn tied(&self) -> Rc<Factor> {
@@ -91,6 +115,7 @@ impl<'a> Kernels<'a> {
             &mut self.fac,
             Kernel::Secant(u),
             self.how,
+            events,
         )?))
     }
 }

@@ -26,7 +26,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     }
     let mut kernels = Kernels::new(problem, opts.factorisation)?;
     loop {
-        let mut events = Vec::new();
+        let mut events = kernels.take_startup_events();
         let tangent = if tracker.history.is_empty() {
             kernels.tied()
         } else {

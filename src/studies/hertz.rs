@@ -510,6 +510,7 @@ pub fn time_phases(
             &mut Factoriser::default(),
             Kernel::Tied,
             opts.factorisation,
+            &mut Vec::new(),
         )?;
         fac.push(t.elapsed().as_secs_f64());
         let t = Instant::now();

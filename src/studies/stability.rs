@@ -15,6 +15,7 @@ use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::problem::Problem;
 use crate::report::atomic::write_text;
+use crate::solver::history::{Event, History};
 use crate::solver::{solve, Solution, SolverOptions};
 use std::path::Path;
 
@@ -50,9 +51,23 @@ pub struct Row {
     pub iterations: usize,
     pub corrections: usize,
     pub skipped_updates: usize,
+    /// Kernel factorisations whose low-rank solves needed refinement.
+    pub kernel_refined: usize,
+    /// Kernel factorisations where the low-rank path was refused for LU.
+    pub kernel_lu_fallbacks: usize,
     pub error_vs_reference: Option<f64>,
     pub error_kind: String,
     pub diagnosis: String,
+}
+
+impl Row {
+    fn record(&mut self, h: &History) {
+        self.iterations = h.len();
+        self.corrections = h.corrections();
+        self.skipped_updates = h.skipped_updates();
+        self.kernel_refined = h.count(|e| *e == Event::KernelRefined);
+        self.kernel_lu_fallbacks = h.count(|e| *e == Event::KernelLuFallback);
+    }
 }
 
 fn peak_pressure(p: &Problem, s: &Solution) -> f64 {
@@ -272,6 +287,8 @@ fn run_case(case: &Case) -> Row {
         iterations: 0,
         corrections: 0,
         skipped_updates: 0,
+        kernel_refined: 0,
+        kernel_lu_fallbacks: 0,
         error_vs_reference: None,
         error_kind: String::new(),
         diagnosis: String::new(),
@@ -290,17 +307,13 @@ fn run_case(case: &Case) -> Row {
         }
         Ok(Err(e)) => {
             if let Error::NotConverged { history, .. } = &e {
-                row.iterations = history.len();
-                row.corrections = history.corrections();
-                row.skipped_updates = history.skipped_updates();
+                row.record(history);
             }
             row.error_kind = e.kind().into();
             row.diagnosis = e.to_string();
         }
         Ok(Ok((p, s))) => {
-            row.iterations = s.history.len();
-            row.corrections = s.history.corrections();
-            row.skipped_updates = s.history.skipped_updates();
+            row.record(&s.history);
             let active = p.active_points(&s.u);
             let err = match case.metric {
                 Metric::PeakPressure(reference) => {
@@ -391,7 +404,32 @@ pub fn penalty_ranges(rows: &[Row]) -> Vec<(f64, Vec<f64>)> {
         .collect()
 }
 
-/// Writes `atlas.csv`, `atlas.md` and `penalty_ranges.md` into `out`.
+/// The cases whose kernels needed refinement or fell back to LU
+/// (see [`crate::solver::kernel::factor_kernel`]), with totals.
+fn kernel_paths_md(rows: &[Row]) -> String {
+    let mut md =
+        String::from("| case | θ | refined factorisations | LU fallbacks |\n|---|---|---|---|\n");
+    for r in rows
+        .iter()
+        .filter(|r| r.kernel_refined + r.kernel_lu_fallbacks > 0)
+    {
+        md.push_str(&format!(
+            "| {} | {} | {} | {} |\n",
+            r.case, r.theta, r.kernel_refined, r.kernel_lu_fallbacks
+        ));
+    }
+    let sum = |f: fn(&Row) -> usize| rows.iter().map(f).sum::<usize>();
+    md.push_str(&format!(
+        "| all {} cases | | {} | {} |\n",
+        rows.len(),
+        sum(|r| r.kernel_refined),
+        sum(|r| r.kernel_lu_fallbacks)
+    ));
+    md
+}
+
+/// Writes `atlas.csv`, `atlas.md`, `penalty_ranges.md` and
+/// `kernel_paths.md` into `out`.
 pub fn run(out: &Path) -> Result<()> {
     let rows = atlas(|k, n, r| {
         eprintln!(
@@ -447,5 +485,6 @@ pub fn run(out: &Path) -> Result<()> {
     write_text(out.join("atlas.csv"), &csv)?;
     write_text(out.join("atlas.md"), &md)?;
     write_text(out.join("penalty_ranges.md"), &ranges)?;
+    write_text(out.join("kernel_paths.md"), &kernel_paths_md(&rows))?;
     Ok(())
 }
