@@ -6,9 +6,9 @@
 //! cargo run --release --example hertz -- 8 64    # timings on the meshes given
 //! ```
 //!
-//! The 256² timing run (132 870 DOFs, the paper's full-step BFGS) takes
-//! over a minute and about 8 GB of memory for its LU factors; pass
-//! smaller meshes on a smaller machine.
+//! The 256² timing run (132 870 DOFs, the default and the paper's
+//! full-step BFGS) takes about 25 s and peaks at about 3 GB; pass smaller
+//! meshes on a smaller machine.
 
 use iga_contact::studies::{default_dir, hertz};
 use std::process::ExitCode;

@@ -64,25 +64,12 @@ impl Triplets {
         }
     }
 
-    pub fn extend(&mut self, other: Triplets) {
-        self.rows.extend(other.rows);
-        self.cols.extend(other.cols);
-        self.vals.extend(other.vals);
-    }
-
     pub fn len(&self) -> usize {
         self.vals.len()
     }
 
     pub fn is_empty(&self) -> bool {
         self.vals.is_empty()
-    }
-
-    /// y += A x for the matrix these triplets describe.
-    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
-        for k in 0..self.vals.len() {
-            y[self.rows[k]] += self.vals[k] * x[self.cols[k]];
-        }
     }
 }
 
