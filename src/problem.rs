@@ -146,7 +146,7 @@ impl Problem {
     /// semidefinite and goes into S = K + Σ H w γ jn jnᵀ; the second has
     /// non-zero rows only where jn ≠ 0, the contact trace, so it is
     /// E_R M with R the trace DOFs of the active points and
-    /// M = −Σ H w jn[R] snᵀ.
+    /// M = −Σ H w `jn[R]` snᵀ.
     pub fn kernel_split(&self, kind: Kernel) -> Result<Option<KernelSplit>> {
         if self.points.iter().any(|cp| cp.theta != 0.0) {
             return Ok(None);
@@ -264,8 +264,8 @@ impl Problem {
     }
 
     /// Fails when no compressive contact force can balance the load along a
-    /// free rigid mode r: equilibrium needs r·F = Σ w |P| ([[r_n]]) with
-    /// |P| ≥ 0, impossible if every [[r_n]] has the wrong sign (or there is
+    /// free rigid mode r: equilibrium needs r·F = Σ w |P| (⟦r_n⟧) with
+    /// |P| ≥ 0, impossible if every ⟦r_n⟧ has the wrong sign (or there is
     /// no contact point at all).
     pub fn check_support(&self) -> Result<()> {
         for r in self.floating_modes() {
@@ -307,8 +307,8 @@ impl Problem {
             .collect()
     }
 
-    /// Resultant force the master exerts on the slave, ∫ −[P]₋ n¹ dΓ with
-    /// the sign that makes it oppose penetration: Σ w [P]₋ n¹.
+    /// Resultant force the master exerts on the slave, ∫ −\[P\]₋ n¹ dΓ with
+    /// the sign that makes it oppose penetration: Σ w \[P\]₋ n¹.
     pub fn contact_force(&self, full: &[f64]) -> [f64; 2] {
         let mut f = [0.0; 2];
         for cp in &self.points {

@@ -1,15 +1,15 @@
 //! The Nitsche terms of the θ-family, Eq. (9)–(10), (13) and (17)–(19), at
 //! one contact quadrature point.
 //!
-//! With P(u) = σ_n(u) + γ g_n(u) and P_θ(v) = θ σ_n(v) − γ [[v_n]], the
+//! With P(u) = σ_n(u) + γ g_n(u) and P_θ(v) = θ σ_n(v) − γ ⟦v_n⟧, the
 //! contact work is
 //!   − (θ/γ) ∫ σ_n(u) σ_n(v) + (1/γ) ∫ [P(u)]₋ P_θ(v),
-//! which for θ = 0 is the paper's − ∫ [P(u)]₋ [[v_n]].
+//! which for θ = 0 is the paper's − ∫ \[P(u)\]₋ ⟦v_n⟧.
 
 use super::pair::ContactPoint;
 use nalgebra::DMatrix;
 
-/// The projection of Eq. (10): [x]₋ = x for x ≤ 0, else 0.
+/// The projection of Eq. (10): \[x\]₋ = x for x ≤ 0, else 0.
 pub fn negative_part(x: f64) -> f64 {
     x.min(0.0)
 }

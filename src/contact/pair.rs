@@ -63,7 +63,7 @@ impl ContactPair {
 }
 
 /// A contact quadrature point with its linear functionals over the DOFs in
-/// `dofs` (global numbering): σ_n(u) = Σ sn_k u_k and [[u_n]] = Σ jn_k u_k.
+/// `dofs` (global numbering): σ_n(u) = Σ sn_k u_k and ⟦u_n⟧ = Σ jn_k u_k.
 #[derive(Clone, Debug)]
 pub struct ContactPoint {
     pub pair: usize,
@@ -85,7 +85,7 @@ pub struct ContactPoint {
 }
 
 impl ContactPoint {
-    /// (σ_n(u), [[u_n]]) for a full displacement vector.
+    /// (σ_n(u), ⟦u_n⟧) for a full displacement vector.
     pub fn normal_stress_and_jump(&self, u: &[f64]) -> (f64, f64) {
         let mut s = 0.0;
         let mut j = 0.0;
@@ -96,7 +96,7 @@ impl ContactPoint {
         (s, j)
     }
 
-    /// P(u) = σ_n(u) + γ g_n(u) with g_n = g₀ − [[u_n]].
+    /// P(u) = σ_n(u) + γ g_n(u) with g_n = g₀ − ⟦u_n⟧.
     pub fn p(&self, u: &[f64]) -> f64 {
         let (s, j) = self.normal_stress_and_jump(u);
         s + self.gamma * (self.g0 - j)

@@ -156,7 +156,7 @@ impl NurbsPatch {
         x
     }
 
-    /// Jacobian J[r][c] = ∂x_r/∂ξ_c for a precomputed basis.
+    /// Jacobian `J[r][c]` = ∂x_r/∂ξ_c for a precomputed basis.
     pub fn jacobian_of(&self, b: &PatchBasis) -> [[f64; 2]; 2] {
         let mut j = [[0.0; 2]; 2];
         for (k, &a) in b.indices.iter().enumerate() {

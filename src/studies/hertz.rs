@@ -108,7 +108,7 @@ pub fn pressure_profile(
 }
 
 /// Peak pressure and contact half-width of a signed profile `(x, P)` sorted
-/// by x: p₀ = max −[P]₋, and the half-width is the x where the pressure
+/// by x: p₀ = max −\[P\]₋, and the half-width is the x where the pressure
 /// falls to zero, found by linear interpolation of P between the last
 /// loaded sample (P < 0) and the sample after it (P ≥ 0). With no loaded
 /// sample both are 0; if the last sample is loaded, the half-width is its x.

@@ -75,7 +75,7 @@ impl Method {
 /// One pressure sample: (x, pressure, quadrature weight).
 pub type Sample = (f64, f64, f64);
 
-/// Contact pressure −[P]₋ sampled at `gauss` Gauss points per contact
+/// Contact pressure −\[P\]₋ sampled at `gauss` Gauss points per contact
 /// element: `(x, pressure, quadrature weight)`, sorted by x.
 pub fn pressure_samples(problem: &Problem, full: &[f64], gauss: usize) -> Result<Vec<Sample>> {
     let pairs: Vec<ContactPair> = problem

@@ -61,7 +61,7 @@ pub const PAPER_TABLE_1: [(usize, &str, &str, &str); 5] = [
 const FIGURE_SUBDIVISIONS: usize = 8;
 /// Points per boundary element where u_y(top) and u_x(x = 1) are sampled
 /// (besides the control points of those sides).
-const SIDE_SAMPLES: usize = 9;
+pub const SIDE_SAMPLES: usize = 9;
 /// Lower clamp of the plotted log10 error: round-off is ~1e-16.
 const ERROR_FLOOR: f64 = 1e-16;
 
