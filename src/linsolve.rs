@@ -1,7 +1,7 @@
 //! Sparse linear algebra on top of faer: a fixed sparsity pattern whose
 //! values are refilled cheaply, factorisations that reuse their symbolic
 //! analysis, and the exact Cholesky-plus-low-rank solve of a matrix that
-//! is symmetric positive definite except in a few rows.
+//! is symmetric positive definite up to a correction of low rank.
 
 use crate::assembly::Triplets;
 use crate::error::{Error, Result};
@@ -157,18 +157,18 @@ impl Factor {
     }
 }
 
-/// A = S + E_R M, with S sparse symmetric positive definite and a
-/// correction confined to a few rows R (E_R injects r = |R| values into
-/// those rows; M is r × n and sparse), solved exactly by the
-/// Sherman–Morrison–Woodbury identity
+/// A = S + U Vᵀ, with S sparse symmetric positive definite and U, V
+/// sparse n × k with k ≪ n, solved exactly by the Sherman–Morrison–Woodbury
+/// identity
 ///
-///   A⁻¹ b = y − Z (I + M Z)⁻¹ M y,   y = S⁻¹ b,   Z = S⁻¹ E_R.
+///   A⁻¹ b = y − Z (I + Vᵀ Z)⁻¹ Vᵀ y,   y = S⁻¹ b,   Z = S⁻¹ U.
 ///
-/// Setting up costs one Cholesky factorisation and r triangular solves
+/// Setting up costs one Cholesky factorisation and k triangular solves
 /// (blocked, for Z); a solve costs one triangular solve, a product with
-/// the n × r block Z and an r × r dense solve. It pays when r ≪ n, which
-/// is the case of the θ = 0 Nitsche kernels: their non-symmetric part
-/// lives in the rows of the contact trace only, r ~ √n.
+/// the n × k block Z and a k × k dense solve. It pays when k ≪ n, which
+/// is the case of the θ ≤ 0 Nitsche kernels: their non-symmetric part
+/// lives in the rows (and, for θ ≠ 0, the columns) of the contact trace,
+/// k ~ √n.
 ///
 /// The identity loses accuracy when S is much worse conditioned than A.
 /// The set-up therefore solves A x = A v for a rough v and measures the
@@ -177,11 +177,10 @@ impl Factor {
 /// tolerance either, the factorisation is refused.
 pub struct LowRankCorrected {
     s: SparseColMat<usize, f64>,
-    rows: Vec<usize>,
-    /// r × n.
-    m: SparseColMat<usize, f64>,
+    u: SparseColMat<usize, f64>,
+    v: SparseColMat<usize, f64>,
     llt: Llt<usize, f64>,
-    /// S⁻¹ E_R, n × r.
+    /// S⁻¹ U, n × k.
     z: faer::Mat<f64>,
     capacitance: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
     /// Refinement steps per solve (0 when the set-up check passed without).
@@ -195,19 +194,31 @@ pub const LOW_RANK_CHECK_TOL: f64 = 1e-8;
 /// Refinement steps per solve when the plain Woodbury solve fails the check.
 const LOW_RANK_REFINE: usize = 2;
 
+/// y = Aᵀ x for a faer CSC matrix (a dot product per column).
+pub fn mul_transpose(a: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
+    let s = a.symbolic();
+    (0..a.ncols())
+        .map(|j| {
+            (s.col_ptr()[j]..s.col_ptr()[j + 1])
+                .map(|k| a.val()[k] * x[s.row_idx()[k]])
+                .sum()
+        })
+        .collect()
+}
+
 impl LowRankCorrected {
-    /// A x = S x + E_R (M x).
+    /// A x = S x + U (Vᵀ x).
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
         let mut y = mul(&self.s, x);
-        for (&i, v) in self.rows.iter().zip(mul(&self.m, x)) {
-            y[i] += v;
+        for (yi, ui) in y.iter_mut().zip(mul(&self.u, &mul_transpose(&self.v, x))) {
+            *yi += ui;
         }
         y
     }
 
-    /// Rank of the correction, r.
+    /// Rank of the correction, k.
     pub fn rank(&self) -> usize {
-        self.rows.len()
+        self.u.ncols()
     }
 
     /// Whether solves refine iteratively (the plain identity failed the check).
@@ -218,13 +229,13 @@ impl LowRankCorrected {
     fn woodbury(&self, x: &mut [f64]) {
         self.llt
             .solve_in_place(faer::ColMut::from_slice_mut(x).as_mat_mut());
-        if self.rows.is_empty() {
+        if self.rank() == 0 {
             return; // A = S
         }
-        let my = nalgebra::DVector::from_vec(mul(&self.m, x));
+        let vy = nalgebra::DVector::from_vec(mul_transpose(&self.v, x));
         let t = self
             .capacitance
-            .solve(&my)
+            .solve(&vy)
             .expect("the capacitance LU was checked invertible at set-up");
         for (c, tc) in t.iter().enumerate() {
             for (xi, zi) in x.iter_mut().zip(self.z.col_as_slice(c)) {
@@ -310,51 +321,57 @@ impl Factoriser {
         }
     }
 
-    /// The [`LowRankCorrected`] factorisation of A = S + E_`rows` M, where
-    /// `s` (n × n, symmetric positive definite, of this factoriser's
-    /// pattern) is factorised by Cholesky and `m` is r × n with r =
-    /// `rows.len()`. Fails with [`Error::Singular`] if S is not positive
-    /// definite, if I + M Z is singular, or if the set-up check fails even
-    /// with refinement (S nearly singular): in each case LU is the safe
-    /// choice.
+    /// The [`LowRankCorrected`] factorisation of A = S + U Vᵀ, where `s`
+    /// (n × n, symmetric positive definite, of this factoriser's pattern)
+    /// is factorised by Cholesky and `u`, `v` are n × k. Fails with
+    /// [`Error::Singular`] if S is not positive definite, if I + Vᵀ Z is
+    /// singular, or if the set-up check fails even with refinement (S
+    /// nearly singular): in each case LU is the safe choice.
     pub fn factor_low_rank(
         &mut self,
         s: &SparseColMat<usize, f64>,
-        rows: &[usize],
-        m: &SparseColMat<usize, f64>,
+        u: &SparseColMat<usize, f64>,
+        v: &SparseColMat<usize, f64>,
     ) -> Result<Factor> {
         let n = s.nrows();
-        let r = rows.len();
-        assert_eq!((m.nrows(), m.ncols()), (r, n), "M must be r × n");
+        let k = u.ncols();
+        assert_eq!(
+            (u.nrows(), v.nrows(), v.ncols()),
+            (n, n, k),
+            "U and V must be n × k"
+        );
         let Factor::Llt(llt) = self.factor(s, Method::Cholesky)? else {
             unreachable!("Method::Cholesky gives Factor::Llt")
         };
-        let mut z = faer::Mat::<f64>::zeros(n, r);
-        for (c, &i) in rows.iter().enumerate() {
-            z[(i, c)] = 1.0;
+        let mut z = faer::Mat::<f64>::zeros(n, k);
+        let su = u.symbolic();
+        for c in 0..k {
+            for p in su.col_ptr()[c]..su.col_ptr()[c + 1] {
+                z[(su.row_idx()[p], c)] = u.val()[p];
+            }
         }
         llt.solve_in_place(z.as_mut());
-        // I + M Z, accumulated column of M by column of M: M[i, j] Z[j, :]
-        let mut cap = nalgebra::DMatrix::<f64>::identity(r, r);
-        let sm = m.symbolic();
-        for j in 0..n {
-            for k in sm.col_ptr()[j]..sm.col_ptr()[j + 1] {
-                let (i, v) = (sm.row_idx()[k], m.val()[k]);
-                for c in 0..r {
-                    cap[(i, c)] += v * z[(j, c)];
+        // I + Vᵀ Z: row c is column c of V against Z
+        let mut cap = nalgebra::DMatrix::<f64>::identity(k, k);
+        let sv = v.symbolic();
+        for c in 0..k {
+            for p in sv.col_ptr()[c]..sv.col_ptr()[c + 1] {
+                let (i, vi) = (sv.row_idx()[p], v.val()[p]);
+                for d in 0..k {
+                    cap[(c, d)] += vi * z[(i, d)];
                 }
             }
         }
         let capacitance = cap.lu();
         if !capacitance.is_invertible() {
             return Err(Error::Singular(
-                "the low-rank capacitance matrix I + M S⁻¹ E is singular".into(),
+                "the low-rank capacitance matrix I + Vᵀ S⁻¹ U is singular".into(),
             ));
         }
         let mut f = LowRankCorrected {
             s: s.clone(),
-            rows: rows.to_vec(),
-            m: m.clone(),
+            u: u.clone(),
+            v: v.clone(),
             llt,
             z,
             capacitance,
@@ -394,12 +411,9 @@ mod tests {
     }
 
     /// S: the 1D Laplacian with a diagonal shift, last diagonal `last`;
-    /// M: `r` dense pseudo-random rows acting on `rows`.
-    fn case(
-        n: usize,
-        last: f64,
-        rows: &[usize],
-    ) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
+    /// U: unit columns on `rows`; V: dense pseudo-random columns. So
+    /// U Vᵀ changes only the rows `rows`, like the θ = 0 kernels.
+    fn case(n: usize, last: f64, rows: &[usize]) -> [SparseColMat<usize, f64>; 3] {
         let mut s = Vec::new();
         for i in 0..n {
             s.push((i, i, if i + 1 == n { last } else { 2.5 }));
@@ -408,26 +422,30 @@ mod tests {
                 s.push((i + 1, i, -1.0));
             }
         }
-        let mut m = Vec::new();
-        for (k, _) in rows.iter().enumerate() {
+        let u: Vec<_> = rows.iter().enumerate().map(|(c, &i)| (i, c, 1.0)).collect();
+        let mut v = Vec::new();
+        for c in 0..rows.len() {
             for j in 0..n {
-                m.push((k, j, ((k * 31 + j * 17) % 13) as f64 / 13.0 - 0.4));
+                v.push((j, c, ((c * 31 + j * 17) % 13) as f64 / 13.0 - 0.4));
             }
         }
-        (csc(n, n, &s), csc(rows.len(), n, &m))
+        [
+            csc(n, n, &s),
+            csc(n, rows.len(), &u),
+            csc(n, rows.len(), &v),
+        ]
     }
 
-    fn dense(
-        s: &SparseColMat<usize, f64>,
-        rows: &[usize],
-        m: &SparseColMat<usize, f64>,
-    ) -> DMatrix<f64> {
-        let n = s.nrows();
+    fn dense(m: &[SparseColMat<usize, f64>; 3]) -> DMatrix<f64> {
+        let n = m[0].nrows();
         DMatrix::from_fn(n, n, |i, j| {
             let e = DVector::from_fn(n, |k, _| if k == j { 1.0 } else { 0.0 });
-            let mut col = mul(s, e.as_slice());
-            for (&ri, v) in rows.iter().zip(mul(m, e.as_slice())) {
-                col[ri] += v;
+            let mut col = mul(&m[0], e.as_slice());
+            for (ci, ui) in col
+                .iter_mut()
+                .zip(mul(&m[1], &mul_transpose(&m[2], e.as_slice())))
+            {
+                *ci += ui;
             }
             col[i]
         })
@@ -435,10 +453,9 @@ mod tests {
 
     fn check_against_dense(last: f64) -> (bool, f64) {
         let n = 40;
-        let rows = [3, 17, 39];
-        let (s, m) = case(n, last, &rows);
+        let m = case(n, last, &[3, 17, 39]);
         let f = Factoriser::default()
-            .factor_low_rank(&s, &rows, &m)
+            .factor_low_rank(&m[0], &m[1], &m[2])
             .unwrap();
         let Factor::LowRank(lr) = &f else {
             panic!("low-rank factor expected")
@@ -446,10 +463,7 @@ mod tests {
         assert_eq!(lr.rank(), 3);
         let b: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
         let x = f.solve(&b).unwrap();
-        let want = dense(&s, &rows, &m)
-            .lu()
-            .solve(&DVector::from_vec(b))
-            .unwrap();
+        let want = dense(&m).lu().solve(&DVector::from_vec(b)).unwrap();
         let err = (DVector::from_vec(x) - &want).norm() / want.norm();
         (lr.refines(), err)
     }
@@ -513,10 +527,9 @@ mod tests {
 
     #[test]
     fn a_singular_symmetric_part_is_refused() {
-        let rows = [3, 17];
-        let (s, m) = case(20, 0.0, &rows);
+        let m = case(20, 0.0, &[3, 17]);
         let err = Factoriser::default()
-            .factor_low_rank(&s, &rows, &m)
+            .factor_low_rank(&m[0], &m[1], &m[2])
             .err()
             .expect("S is singular");
         assert!(matches!(err, Error::Singular(_)), "{err}");

@@ -36,14 +36,22 @@ pub struct Problem {
     pattern: Pattern,
 }
 
-/// A θ = 0 kernel written as S + E_R M: see [`Problem::kernel_split`].
+/// A kernel written as S + U Vᵀ: see [`Problem::kernel_split`].
 pub struct KernelSplit {
-    /// S: the bulk stiffness plus the penalty part of the active points.
+    /// S: the bulk stiffness plus the symmetric positive semidefinite
+    /// contact terms.
     pub spd: SparseColMat<usize, f64>,
-    /// R: the free DOFs of the contact trace of the active points.
-    pub rows: Vec<usize>,
-    /// M, `rows.len()` × n.
-    pub coupling: SparseColMat<usize, f64>,
+    /// U, n × k.
+    pub u: SparseColMat<usize, f64>,
+    /// V, n × k.
+    pub v: SparseColMat<usize, f64>,
+}
+
+impl KernelSplit {
+    /// k, the rank of the correction U Vᵀ.
+    pub fn rank(&self) -> usize {
+        self.u.ncols()
+    }
 }
 
 /// Summary of the contact state at one displacement.
@@ -139,27 +147,35 @@ impl Problem {
         }))
     }
 
-    /// The kernel of `kind` split as S + E_R M for
+    /// The kernel of `kind` split as S + U Vᵀ for
     /// [`crate::linsolve::Factoriser::factor_low_rank`], when every point
-    /// has θ = 0 (otherwise `None`). There the point matrix is
-    /// H w (γ jn jnᵀ − jn snᵀ): its first term is symmetric positive
-    /// semidefinite and goes into S = K + Σ H w γ jn jnᵀ; the second has
-    /// non-zero rows only where jn ≠ 0, the contact trace, so it is
-    /// E_R M with R the trace DOFs of the active points and
-    /// M = −Σ H w `jn[R]` snᵀ.
+    /// has θ ≤ 0 (otherwise `None`).
+    ///
+    /// The point matrix is H w (γ jn jnᵀ − jn snᵀ − θ sn jnᵀ) − (1 − H)
+    /// (θ/γ) w sn snᵀ. Its symmetric positive semidefinite terms (the
+    /// first, and the last for θ ≤ 0) go into S. The rest is
+    /// E_R M + Nᵀ E_Rᵀ, with R the trace DOFs (jn ≠ 0) of the active
+    /// points, M = −Σ H w jn[R] snᵀ and N = −Σ H θ w jn[R] snᵀ: rows of
+    /// the trace, and for θ ≠ 0 also columns. So U = [E_R | Nᵀ] and
+    /// V = [Mᵀ | E_R], of rank r = |R| for θ = 0 and 2r otherwise.
     pub fn kernel_split(&self, kind: Kernel) -> Result<Option<KernelSplit>> {
-        if self.points.iter().any(|cp| cp.theta != 0.0) {
+        if self.points.iter().any(|cp| cp.theta > 0.0) {
             return Ok(None);
         }
         let h = self.activity(kind);
         let spd = self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
-            let c = h[q] * cp.weight * cp.gamma;
-            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| c * cp.jn[a] * cp.jn[b])
+            let (w, g, th) = (cp.weight, cp.gamma, cp.theta);
+            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| {
+                h[q] * w * g * cp.jn[a] * cp.jn[b]
+                    - (1.0 - h[q]) * (th / g) * w * cp.sn[a] * cp.sn[b]
+            })
         }))?;
         let n = self.n();
         let mut row_of = vec![usize::MAX; n];
         let mut rows = Vec::new();
-        let mut coupling = Vec::new();
+        // (free DOF b, trace index of a, −H w jn[a] sn[b]) and its θ multiple
+        let mut mt = Vec::new();
+        let mut nt = Vec::new();
         for (q, cp) in self.points.iter().enumerate() {
             if h[q] == 0.0 {
                 continue;
@@ -175,17 +191,38 @@ impl Problem {
                 for (b, &db) in cp.dofs.iter().enumerate() {
                     if let Some(j) = self.map.free(db) {
                         let v = -h[q] * cp.weight * cp.jn[a] * cp.sn[b];
-                        coupling.push(Triplet::new(row_of[i], j, v));
+                        mt.push((j, row_of[i], v));
+                        if cp.theta != 0.0 {
+                            nt.push((j, row_of[i], cp.theta * v));
+                        }
                     }
                 }
             }
         }
-        let coupling = SparseColMat::try_new_from_triplets(rows.len(), n, &coupling)
-            .map_err(|e| Error::Singular(format!("cannot build the trace coupling: {e:?}")))?;
+        let r = rows.len();
+        let identity: Vec<_> = rows.iter().enumerate().map(|(c, &i)| (i, c, 1.0)).collect();
+        let shifted = |t: &[(usize, usize, f64)]| -> Vec<(usize, usize, f64)> {
+            t.iter().map(|&(i, c, v)| (i, c + r, v)).collect()
+        };
+        let (u, v, k) = if nt.is_empty() {
+            (identity, mt, r)
+        } else {
+            let u = [identity.clone(), shifted(&nt)].concat();
+            let v = [mt, shifted(&identity)].concat();
+            (u, v, 2 * r)
+        };
+        let build = |t: Vec<(usize, usize, f64)>| {
+            let t: Vec<_> = t
+                .into_iter()
+                .map(|(i, j, v)| Triplet::new(i, j, v))
+                .collect();
+            SparseColMat::try_new_from_triplets(n, k, &t)
+                .map_err(|e| Error::Singular(format!("cannot build the low-rank factors: {e:?}")))
+        };
         Ok(Some(KernelSplit {
             spd,
-            rows,
-            coupling,
+            u: build(u)?,
+            v: build(v)?,
         }))
     }
 

@@ -4,7 +4,7 @@
 
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::contact::Integration;
-use iga_contact::linsolve::{mul, Factor, Factoriser, Method};
+use iga_contact::linsolve::{mul, mul_transpose, Factor, Factoriser, Method};
 use iga_contact::material::Material;
 use iga_contact::problem::{Kernel, Problem};
 use iga_contact::solver::history::Event;
@@ -57,51 +57,75 @@ fn diff(a: &[f64], b: &[f64]) -> f64 {
 
 #[test]
 fn the_split_reassembles_the_kernel() {
-    let p = hertz(8, 0.0);
-    let u = mixed_iterate(&p);
-    let mut ranks = Vec::new();
-    for kind in [Kernel::Tied, Kernel::Secant(&u)] {
-        let split = p.kernel_split(kind).unwrap().expect("θ = 0 splits");
-        let v = rough(p.n(), 11);
-        let mut got = mul(&split.spd, &v);
-        for (&i, m) in split.rows.iter().zip(mul(&split.coupling, &v)) {
-            got[i] += m;
+    for theta in [0.0, -1.0] {
+        let p = hertz(8, theta);
+        let u = mixed_iterate(&p);
+        let mut ranks = Vec::new();
+        for kind in [Kernel::Tied, Kernel::Secant(&u)] {
+            let split = p.kernel_split(kind).unwrap().expect("θ ≤ 0 splits");
+            let v = rough(p.n(), 11);
+            let mut got = mul(&split.spd, &v);
+            for (g, c) in got
+                .iter_mut()
+                .zip(mul(&split.u, &mul_transpose(&split.v, &v)))
+            {
+                *g += c;
+            }
+            let want = mul(&p.kernel(kind).unwrap(), &v);
+            assert!(
+                diff(&got, &want) <= 1e-13,
+                "θ = {theta}: {:.2e}",
+                diff(&got, &want)
+            );
+            // the non-symmetric part lives on the trace: a thin layer
+            assert!(
+                split.rank() * 5 < p.n(),
+                "θ = {theta}: k = {}",
+                split.rank()
+            );
+            ranks.push(split.rank());
         }
-        let want = mul(&p.kernel(kind).unwrap(), &v);
-        assert!(diff(&got, &want) <= 1e-13, "{:.2e}", diff(&got, &want));
-        // the non-symmetric part lives on the trace rows: a thin layer
-        assert!(split.rows.len() * 10 < p.n(), "r = {}", split.rows.len());
-        ranks.push(split.rows.len());
+        // θ = 0: the rows R of the active trace; θ ≠ 0: rows and columns, 2|R|
+        let trace = |k: usize| if theta == 0.0 { k } else { k / 2 };
+        assert!(
+            trace(ranks[1]) < trace(ranks[0]),
+            "θ = {theta}: ranks {ranks:?}"
+        );
+        assert_eq!(ranks[0], if theta == 0.0 { 8 + 2 } else { 2 * (8 + 2) });
     }
-    // only the active points' trace rows are corrected
-    assert!(ranks[1] < ranks[0], "ranks {ranks:?}");
 }
 
 #[test]
 fn the_low_rank_solve_equals_lu() {
-    let p = hertz(16, 0.0);
-    let u = mixed_iterate(&p);
-    for kind in [Kernel::Tied, Kernel::Secant(&u)] {
-        let mut fac = Factoriser::default();
-        let mut events = Vec::new();
-        let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto, &mut events).unwrap();
-        assert!(events.is_empty(), "{events:?}");
-        assert!(
-            matches!(low, Factor::LowRank(_)),
-            "Auto takes the low-rank path"
-        );
-        let lu = factor_kernel(&p, &mut fac, kind, Factorisation::Lu, &mut events).unwrap();
-        assert!(matches!(lu, Factor::Lu(_)));
-        let b = rough(p.n(), 5);
-        let (x_low, x_lu) = (low.solve(&b).unwrap(), lu.solve(&b).unwrap());
-        assert!(diff(&x_low, &x_lu) <= 1e-10, "{:.2e}", diff(&x_low, &x_lu));
-        let k = p.kernel(kind).unwrap();
-        let res: Vec<f64> = mul(&k, &x_low).iter().zip(&b).map(|(a, c)| a - c).collect();
-        assert!(
-            norm(&res) <= 1e-10 * norm(&b),
-            "{:.2e}",
-            norm(&res) / norm(&b)
-        );
+    for theta in [0.0, -1.0] {
+        let p = hertz(16, theta);
+        let u = mixed_iterate(&p);
+        for kind in [Kernel::Tied, Kernel::Secant(&u)] {
+            let mut fac = Factoriser::default();
+            let mut events = Vec::new();
+            let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto, &mut events).unwrap();
+            assert!(events.is_empty(), "θ = {theta}: {events:?}");
+            assert!(
+                matches!(low, Factor::LowRank(_)),
+                "θ = {theta}: Auto takes the low-rank path"
+            );
+            let lu = factor_kernel(&p, &mut fac, kind, Factorisation::Lu, &mut events).unwrap();
+            assert!(matches!(lu, Factor::Lu(_)));
+            let b = rough(p.n(), 5);
+            let (x_low, x_lu) = (low.solve(&b).unwrap(), lu.solve(&b).unwrap());
+            assert!(
+                diff(&x_low, &x_lu) <= 1e-10,
+                "θ = {theta}: {:.2e}",
+                diff(&x_low, &x_lu)
+            );
+            let k = p.kernel(kind).unwrap();
+            let res: Vec<f64> = mul(&k, &x_low).iter().zip(&b).map(|(a, c)| a - c).collect();
+            assert!(
+                norm(&res) <= 1e-10 * norm(&b),
+                "θ = {theta}: {:.2e}",
+                norm(&res) / norm(&b)
+            );
+        }
     }
 }
 
@@ -129,22 +153,20 @@ fn the_symmetric_theta_one_kernel_is_indefinite() {
 }
 
 #[test]
-fn other_thetas_fall_back_to_lu() {
-    for theta in [1.0, -1.0] {
-        let p = hertz(8, theta);
-        assert!(p.kernel_split(Kernel::Tied).unwrap().is_none());
-        let mut events = Vec::new();
-        let f = factor_kernel(
-            &p,
-            &mut Factoriser::default(),
-            Kernel::Tied,
-            Factorisation::Auto,
-            &mut events,
-        )
-        .unwrap();
-        assert!(matches!(f, Factor::Lu(_)), "θ = {theta}");
-        assert!(events.is_empty(), "LU by design is no fallback: {events:?}");
-    }
+fn theta_one_falls_back_to_lu() {
+    let p = hertz(8, 1.0);
+    assert!(p.kernel_split(Kernel::Tied).unwrap().is_none());
+    let mut events = Vec::new();
+    let f = factor_kernel(
+        &p,
+        &mut Factoriser::default(),
+        Kernel::Tied,
+        Factorisation::Auto,
+        &mut events,
+    )
+    .unwrap();
+    assert!(matches!(f, Factor::Lu(_)));
+    assert!(events.is_empty(), "LU by design is no fallback: {events:?}");
 }
 
 #[test]
@@ -159,9 +181,9 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
     let u = vec![0.0; p.n()];
     assert_eq!(p.active_points(&u), 0);
     let split = p.kernel_split(Kernel::Secant(&u)).unwrap().unwrap();
-    assert!(split.rows.is_empty());
+    assert_eq!(split.rank(), 0);
     let err = Factoriser::default()
-        .factor_low_rank(&split.spd, &split.rows, &split.coupling)
+        .factor_low_rank(&split.spd, &split.u, &split.v)
         .err()
         .expect("a singular S is refused");
     assert_eq!(err.kind(), "singular_kernel", "{err}");
@@ -211,7 +233,12 @@ fn both_factorisations_give_the_same_solutions() {
     }
     .build()
     .unwrap();
-    for (name, p) in [("hertz 8²", hertz(8, 0.0)), ("taylor", taylor)] {
+    let cases = [
+        ("hertz 8²", hertz(8, 0.0)),
+        ("hertz 8², θ = −1", hertz(8, -1.0)),
+        ("taylor", taylor),
+    ];
+    for (name, p) in cases {
         for kind in [SolverKind::Bfgs, SolverKind::Newton] {
             let run = |how| {
                 solve(

@@ -1,12 +1,13 @@
 //! Factorising the kernels (17)–(18) of one solve.
 //!
-//! Both kernels are non-symmetric for θ = 0, which calls for LU. But their
-//! non-symmetric part, −Σ w jn snᵀ, has non-zero rows only on the contact
-//! trace, so the kernel is a symmetric positive definite matrix plus a
-//! correction of rank r ~ √n ([`Problem::kernel_split`]). A Cholesky
-//! factorisation with the Sherman–Morrison–Woodbury identity
-//! ([`crate::linsolve::LowRankCorrected`]) solves it exactly and, with
-//! faer, several times faster than LU.
+//! Both kernels are non-symmetric for θ ≠ 1, which calls for LU. But for
+//! θ ≤ 0 their non-symmetric part, −Σ w (jn snᵀ + θ sn jnᵀ), lives in the
+//! rows and columns of the contact trace, so the kernel is a symmetric
+//! positive definite matrix plus a correction of rank r or 2r, r ~ √n
+//! ([`Problem::kernel_split`]). A Cholesky factorisation with the
+//! Sherman–Morrison–Woodbury identity ([`crate::linsolve::LowRankCorrected`])
+//! solves it exactly and, with faer, several times faster than LU. For
+//! θ = 1 the kernel is symmetric but indefinite, so it stays with LU.
 
 use super::history::Event;
 use crate::error::{Error, Result};
@@ -20,7 +21,7 @@ use std::rc::Rc;
 #[serde(rename_all = "snake_case")]
 pub enum Factorisation {
     /// Cholesky with the low-rank trace correction where it applies (every
-    /// point θ = 0, the symmetric part positive definite, the set-up check
+    /// point θ ≤ 0, the symmetric part positive definite, the set-up check
     /// passed), sparse LU otherwise.
     #[default]
     Auto,
@@ -32,7 +33,7 @@ pub enum Factorisation {
 /// symbolic analyses kept in `fac`. A low-rank factorisation that needed
 /// refinement, or was refused in favour of LU, is logged in `events`
 /// ([`Event::KernelRefined`], [`Event::KernelLuFallback`]); LU chosen
-/// because θ ≠ 0 is the design, not an event.
+/// because some θ > 0 is the design, not an event.
 pub fn factor_kernel(
     problem: &Problem,
     fac: &mut Factoriser,
@@ -42,7 +43,7 @@ pub fn factor_kernel(
 ) -> Result<Factor> {
     if how == Factorisation::Auto {
         if let Some(split) = problem.kernel_split(kind)? {
-            match fac.factor_low_rank(&split.spd, &split.rows, &split.coupling) {
+            match fac.factor_low_rank(&split.spd, &split.u, &split.v) {
                 Ok(f) => {
                     if matches!(&f, Factor::LowRank(l) if l.refines()) {
                         events.push(Event::KernelRefined);
