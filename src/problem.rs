@@ -155,7 +155,7 @@ impl Problem {
     /// (θ/γ) w sn snᵀ. Its symmetric positive semidefinite terms (the
     /// first, and the last for θ ≤ 0) go into S. The rest is
     /// E_R M + Nᵀ E_Rᵀ, with R the trace DOFs (jn ≠ 0) of the active
-    /// points, M = −Σ H w jn[R] snᵀ and N = −Σ H θ w jn[R] snᵀ: rows of
+    /// points, M = −Σ H w `jn[R]` snᵀ and N = −Σ H θ w `jn[R]` snᵀ: rows of
     /// the trace, and for θ ≠ 0 also columns. So U = [E_R | Nᵀ] and
     /// V = [Mᵀ | E_R], of rank r = |R| for θ = 0 and 2r otherwise.
     pub fn kernel_split(&self, kind: Kernel) -> Result<Option<KernelSplit>> {
