@@ -103,25 +103,20 @@ fn main() -> iga_contact::Result<()> {
         }
         .build()?;
         let kt = p.kernel(Kernel::Tied)?;
-        let (t_lu, lu) = timed(1, || {
-            factor_kernel(
-                &p,
-                &mut Factoriser::default(),
-                Kernel::Tied,
-                Factorisation::Lu,
-                &mut Vec::new(),
-            )
-        });
+        let factor = |how| {
+            timed(1, || {
+                factor_kernel(
+                    &p,
+                    &mut Factoriser::default(),
+                    Kernel::Tied,
+                    how,
+                    &mut Vec::new(),
+                )
+            })
+        };
+        let (t_lu, lu) = factor(Factorisation::Lu);
         let lu = lu?;
-        let (t_low, low) = timed(1, || {
-            factor_kernel(
-                &p,
-                &mut Factoriser::default(),
-                Kernel::Tied,
-                Factorisation::Auto,
-                &mut Vec::new(),
-            )
-        });
+        let (t_low, low) = factor(Factorisation::Auto);
         let low = low?;
         let Factor::LowRank(lr) = &low else {
             panic!("the θ = 0 Hertz kernel should take the low-rank path");

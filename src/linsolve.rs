@@ -18,7 +18,6 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 /// times faster than sorting all (row, col) pairs for the million-entry
 /// triplet sets of element assembly.
 pub struct Pattern {
-    n: usize,
     symbolic: SymbolicSparseColMat<usize>,
     /// The CSC slot of every triplet, the parts one after the other.
     slot: Vec<usize>,
@@ -80,11 +79,11 @@ impl Pattern {
             col_ptr[j + 1] = row_idx.len();
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        Ok(Self { n, symbolic, slot })
+        Ok(Self { symbolic, slot })
     }
 
     pub fn n(&self) -> usize {
-        self.n
+        self.symbolic.nrows()
     }
 
     /// Stored entries.

@@ -1,6 +1,9 @@
 //! The contact Jacobians against finite differences of the residual, for
 //! θ = 0, 1, −1, on a rigid master (Hertz) and a deformable one (Taylor).
 
+mod common;
+
+use common::perturbed_solution;
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::contact::Integration;
 use iga_contact::problem::{Kernel, Problem};
@@ -56,20 +59,6 @@ fn check_jacobian(p: &Problem, u: &[f64]) -> usize {
     checked
 }
 
-fn perturbed_solution(p: &Problem, amplitude: f64) -> Vec<f64> {
-    let s = solve(p, &SolverOptions::with_kind(SolverKind::Newton)).expect("converges");
-    let umax = s.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut seed = 7u64;
-    s.u.iter()
-        .map(|v| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            v + amplitude * umax * (((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5)
-        })
-        .collect()
-}
-
 #[test]
 fn secant_matrix_is_the_jacobian_on_a_rigid_master() {
     for theta in [0.0, 1.0, -1.0] {
@@ -80,7 +69,7 @@ fn secant_matrix_is_the_jacobian_on_a_rigid_master() {
         }
         .build()
         .unwrap();
-        let u = perturbed_solution(&p, 1e-3);
+        let u = perturbed_solution(&p, 1e-3, 7);
         let active = p.active_points(&u);
         assert!(
             active > 0 && active < p.points.len(),
@@ -105,7 +94,7 @@ fn secant_matrix_is_the_jacobian_between_two_bodies() {
         }
         .build()
         .unwrap();
-        let u = perturbed_solution(&p, 1e-2);
+        let u = perturbed_solution(&p, 1e-2, 7);
         assert_eq!(p.active_points(&u), p.points.len());
         assert_eq!(check_jacobian(&p, &u), p.n(), "θ = {theta}");
     }

@@ -2,6 +2,9 @@
 //! assembled matrix, and Cholesky of its symmetric positive definite part
 //! with the Sherman–Morrison–Woodbury correction of the trace rows.
 
+mod common;
+
+use common::{perturbed_solution, rough};
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::contact::Integration;
 use iga_contact::linsolve::{mul, mul_transpose, Factor, Factoriser, Method};
@@ -13,17 +16,6 @@ use iga_contact::solver::{solve, SolverKind, SolverOptions};
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-fn rough(n: usize, mut seed: u64) -> Vec<f64> {
-    (0..n)
-        .map(|_| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
-        })
-        .collect()
 }
 
 fn hertz(elements: usize, theta: f64) -> Problem {
@@ -38,13 +30,7 @@ fn hertz(elements: usize, theta: f64) -> Problem {
 
 /// A displacement near the solution with a mixed active set.
 fn mixed_iterate(p: &Problem) -> Vec<f64> {
-    let s = solve(p, &SolverOptions::with_kind(SolverKind::Newton)).unwrap();
-    let umax = s.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let u: Vec<f64> =
-        s.u.iter()
-            .zip(rough(p.n(), 3))
-            .map(|(a, e)| a + 1e-3 * umax * e)
-            .collect();
+    let u = perturbed_solution(p, 1e-3, 3);
     let active = p.active_points(&u);
     assert!(active > 0 && active < p.points.len(), "active {active}");
     u
