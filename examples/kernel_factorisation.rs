@@ -15,12 +15,14 @@
 //! per mesh: set-up times, the cost of one kernel solve each way, the GMRES
 //! iteration count and the rank r of the correction.
 
-use iga_contact::benchmarks::Hertz;
+#[path = "common/hertz.rs"]
+mod setup;
+
 use iga_contact::linsolve::{mul, Factor, Factoriser, Method};
 use iga_contact::problem::Kernel;
-use iga_contact::report::atomic::write_text;
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::solver::kernel::{factor_kernel, Factorisation};
-use iga_contact::studies::default_dir;
 use std::time::Instant;
 
 fn norm(v: &[f64]) -> f64 {
@@ -95,13 +97,42 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 }
 
 fn main() -> iga_contact::Result<()> {
-    let mut table = String::from("| elements | DOFs | LU (s) | Cholesky of S (s) | low-rank set-up (s) | rank r | LU solve (ms) | low-rank solve (ms) | GMRES iterations | GMRES solve (ms) |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    let mut chapter = Chapter::from_args("kernel")?;
+    let mut table = Table::new(vec![
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("dofs", "DOFs"),
+        Column::new("lu_setup", "LU", Unit::Second, Format::Fixed(3)),
+        Column::new(
+            "cholesky_setup",
+            "Cholesky of S",
+            Unit::Second,
+            Format::Fixed(3),
+        ),
+        Column::new(
+            "low_rank_setup",
+            "low-rank set-up",
+            Unit::Second,
+            Format::Fixed(3),
+        ),
+        Column::plain("rank", "rank r"),
+        Column::new("lu_solve", "LU solve", Unit::Millisecond, Format::Fixed(2)),
+        Column::new(
+            "low_rank_solve",
+            "low-rank solve",
+            Unit::Millisecond,
+            Format::Fixed(2),
+        ),
+        Column::plain("gmres_iterations", "GMRES its"),
+        Column::new(
+            "gmres_solve",
+            "GMRES solve",
+            Unit::Millisecond,
+            Format::Fixed(2),
+        ),
+    ]);
+    let mut ratios = Vec::new();
     for n in [16, 64, 128] {
-        let p = Hertz {
-            elements: n,
-            ..Hertz::default()
-        }
-        .build()?;
+        let p = setup::scene(setup::iga(2, n))?.build()?;
         let kt = p.kernel(Kernel::Tied)?;
         let factor = |how| {
             timed(1, || {
@@ -139,22 +170,31 @@ fn main() -> iga_contact::Result<()> {
             let diff = norm(&d) / norm(&x_lu);
             assert!(diff < 1e-8, "{name} and LU disagree: {diff:.2e}");
         }
-        let its = if its >= 200 {
-            "200 (cap)".to_string()
+        let its: Cell = if its >= 200 {
+            "200 (cap)".into()
         } else {
-            its.to_string()
+            its.into()
         };
-        table.push_str(&format!(
-            "| {n}×{n} | {} | {t_lu:.3} | {t_ch:.3} | {t_low:.3} | {rank} | {:.2} | {:.2} | {its} | {:.2} |\n",
-            p.n(),
-            1e3 * s_lu,
-            1e3 * s_low,
-            1e3 * s_gm
-        ));
+        ratios.push((n, s_lu / s_low, t_lu / t_low));
+        table.push(vec![
+            n.into(),
+            p.n().into(),
+            t_lu.into(),
+            t_ch.into(),
+            t_low.into(),
+            rank.into(),
+            s_lu.into(),
+            s_low.into(),
+            its,
+            s_gm.into(),
+        ])?;
     }
-    let out = default_dir("kernel").join("factorisation.md");
-    write_text(&out, &table)?;
-    print!("{table}");
-    println!("written to {}", out.display());
-    Ok(())
+    print!("{}", table.to_markdown());
+    chapter.table("factorisation", &table)?;
+    let f = chapter.facts();
+    for (n, solve, set_up) in ratios {
+        f.number(&format!("solve_speedup_{n}"), solve, Format::Times(2))?;
+        f.number(&format!("setup_speedup_{n}"), set_up, Format::Times(1))?;
+    }
+    chapter.finish()
 }

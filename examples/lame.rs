@@ -20,6 +20,8 @@ use iga_contact::linsolve::{Factoriser, Method, Pattern};
 use iga_contact::material::{Material, Plane};
 use iga_contact::nurbs::Side;
 use iga_contact::quadrature;
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::table::{Column, Format, Table, Unit};
 use iga_contact::space::Space;
 use iga_contact::Result;
 
@@ -206,42 +208,45 @@ pub fn check_rates(rows: &[Row], p: usize) -> std::result::Result<(), String> {
     Ok(())
 }
 
-/// The CSV: one row per (degree, level); `elements` is the total count.
-pub fn csv(rows: &[Row]) -> String {
-    let mut s = String::from("degree,elements,dofs,l2_error,energy_error\n");
-    for r in rows {
-        s.push_str(&format!(
-            "{},{},{},{:.6e},{:.6e}\n",
-            r.degree, r.elements, r.dofs, r.l2_error, r.energy_error
-        ));
-    }
-    s
-}
-
-/// The Markdown table with the observed rates in h.
-pub fn markdown(rows: &[Row]) -> String {
-    let mut s = String::from(
-        "| p | elements | DOFs | rel. L² error | L² rate | rel. energy error | energy rate |\n\
-         |---|---:|---:|---:|---:|---:|---:|\n",
-    );
+/// One row per (degree, level), with the observed rates in h between
+/// levels (Markdown only; `convergence.csv` keeps exactly the columns
+/// `degree,elements,dofs,l2_error,energy_error`, `elements` the total count).
+pub fn table(rows: &[Row]) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("degree", "p"),
+        Column::new("mesh", "mesh", Unit::None, Format::Mesh).markdown_only(),
+        Column::plain("elements", "elements").csv_only(),
+        Column::plain("dofs", "DOFs"),
+        Column::new("l2_error", "rel. L² error", Unit::None, Format::Sci(3)),
+        Column::new("l2_rate", "L² rate", Unit::None, Format::Fixed(2)).markdown_only(),
+        Column::new(
+            "energy_error",
+            "rel. energy error",
+            Unit::None,
+            Format::Sci(3),
+        ),
+        Column::new("energy_rate", "energy rate", Unit::None, Format::Fixed(2)).markdown_only(),
+    ]);
     let mut start = 0;
     while start < rows.len() {
         let p = rows[start].degree;
         let end = start + rows[start..].iter().take_while(|r| r.degree == p).count();
         let group = &rows[start..end];
         for (r, rate) in group.iter().zip(rates(group)) {
-            let (l2r, enr) = match rate {
-                Some((a, b)) => (format!("{a:.2}"), format!("{b:.2}")),
-                None => ("–".into(), "–".into()),
-            };
-            s.push_str(&format!(
-                "| {} | {}×{} = {} | {} | {:.3e} | {} | {:.3e} | {} |\n",
-                r.degree, r.n, r.n, r.elements, r.dofs, r.l2_error, l2r, r.energy_error, enr
-            ));
+            t.push(vec![
+                r.degree.into(),
+                r.n.into(),
+                r.elements.into(),
+                r.dofs.into(),
+                r.l2_error.into(),
+                rate.map(|(a, _)| a).into(),
+                r.energy_error.into(),
+                rate.map(|(_, b)| b).into(),
+            ])?;
         }
         start = end;
     }
-    s
+    Ok(t)
 }
 
 /// Both errors against the number of unknowns, log–log: L² solid, energy
@@ -265,6 +270,22 @@ pub fn plot(rows: &[Row], path: &std::path::Path) -> Result<()> {
                 .dashed(),
         );
     }
+    // Reference slopes in N (unknowns ~ h⁻²): the optimal L² rate p + 1 in
+    // h is a slope −(p + 1)/2 in N, the energy rate p a slope −p/2. Each is
+    // drawn through the finest point of its curve, over the last two decades.
+    for &p in &degrees {
+        let last = rows.iter().rfind(|r| r.degree == p).expect("rows of p");
+        let n1 = last.dofs as f64;
+        for (err, rate, what) in [
+            (last.l2_error, p + 1, "L²"),
+            (last.energy_error, p, "energy"),
+        ] {
+            let slope = -(rate as f64) / 2.0;
+            let n0 = n1 / 100.0;
+            let line = vec![(n0, err * (n0 / n1).powf(slope)), (n1, err)];
+            series.push(Series::line(format!("slope h^{rate} ({what}, p = {p})"), line).dashed());
+        }
+    }
     let axes = Axes {
         title: "Lamé cylinder: relative errors".into(),
         x_label: "unknowns (free DOFs)".into(),
@@ -277,7 +298,7 @@ pub fn plot(rows: &[Row], path: &std::path::Path) -> Result<()> {
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let problem = Lame::default();
-    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated/lame");
+    let mut chapter = Chapter::from_args("lame")?;
     let levels = [2, 4, 8, 16, 32, 64];
     let mut rows = Vec::new();
     let mut failures = Vec::new();
@@ -299,11 +320,19 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             failures.push(e);
         }
     }
-    let table = markdown(&rows);
-    iga_contact::report::atomic::write_text(out.join("convergence.csv"), &csv(&rows))?;
-    iga_contact::report::atomic::write_text(out.join("convergence.md"), &table)?;
-    plot(&rows, &out.join("convergence.svg"))?;
-    println!("{table}");
+    let table = table(&rows)?;
+    chapter.table("convergence", &table)?;
+    plot(&rows, &chapter.path("convergence.svg"))?;
+    println!("{}", table.to_markdown());
+    let f = chapter.facts();
+    for p in [2, 3, 4] {
+        let group: Vec<Row> = rows.iter().filter(|r| r.degree == p).cloned().collect();
+        if let Some(Some((l2, en))) = rates(&group).last() {
+            f.number(&format!("l2_rate_p{p}"), *l2, Format::Fixed(2))?;
+            f.number(&format!("energy_rate_p{p}"), *en, Format::Fixed(2))?;
+        }
+    }
+    chapter.finish()?;
     if !failures.is_empty() {
         return Err(format!("rates below the expected ones:\n{}", failures.join("\n")).into());
     }

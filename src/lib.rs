@@ -2,10 +2,9 @@
 //! corrected BFGS iteration: a literate companion to Hu (2021).
 //!
 //! Data flows one way: [`nurbs`]/[`geometry`] → [`space`] → [`assembly`] →
-//! [`contact`] → [`solver`] → [`report`].
+//! [`contact`] → [`solver`] → [`post`] → [`report`].
 
 pub mod assembly;
-pub mod benchmarks;
 #[doc(hidden)]
 pub mod book;
 pub mod contact;
@@ -15,12 +14,13 @@ pub mod geometry;
 pub mod linsolve;
 pub mod material;
 pub mod nurbs;
+pub mod post;
 pub mod problem;
 pub mod quadrature;
 pub mod report;
 pub mod scene;
 pub mod solver;
 pub mod space;
-pub mod studies;
+pub mod timing;
 
 pub use error::{Error, Result};

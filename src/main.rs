@@ -6,9 +6,9 @@
 //! Every error is one line on stderr starting with `error:`.
 
 use clap::{Parser, Subcommand};
+use iga_contact::report::chapter::PROGRAMS;
 use iga_contact::scene::Scene;
-use iga_contact::{studies, Error};
-use std::io::Write;
+use iga_contact::Error;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -37,9 +37,10 @@ enum Command {
         /// The scene file (TOML).
         scene: PathBuf,
     },
-    /// Regenerate the book's tables and figures (every registered study).
+    /// Regenerate the book's tables and figures: run every chapter program
+    /// (`cargo run --release --example NAME` in this source tree).
     Reproduce {
-        /// Run only the study of this name.
+        /// Run only the chapter program of this name.
         #[arg(long)]
         only: Option<String>,
     },
@@ -104,42 +105,65 @@ fn check(scene_path: &Path) -> Result<(), Failure> {
 }
 
 fn reproduce(only: Option<String>) -> Result<(), Failure> {
-    let mut all = studies::registry();
+    let mut all: Vec<_> = PROGRAMS.to_vec();
     if let Some(name) = &only {
-        let names: Vec<&str> = all.iter().map(|s| s.name).collect();
+        let names: Vec<&str> = all.iter().map(|p| p.example).collect();
         if !names.contains(&name.as_str()) {
             let e = Error::invalid(
                 "--only",
                 name,
-                format!("no such study (studies: {})", names.join(", ")),
+                format!("no such chapter program (programs: {})", names.join(", ")),
             );
             return Err(Failure::from_error(None, &e));
         }
-        all.retain(|s| s.name == name);
+        all.retain(|p| p.example == name);
+    }
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    // One build of every example first, so that the progress below is the
+    // programs' own running time.
+    let status = std::process::Command::new(&cargo)
+        .args(["build", "--release", "--examples", "--manifest-path"])
+        .arg(&manifest)
+        .status();
+    if !status.as_ref().is_ok_and(|s| s.success()) {
+        return Err(Failure {
+            message: format!("building the chapter programs failed ({status:?})"),
+            code: 1,
+        });
     }
     let n = all.len();
     let start = Instant::now();
     let mut failed = Vec::new();
-    for (k, study) in all.iter().enumerate() {
-        let dir = studies::default_dir(study.name);
-        eprint!("[{}/{n}] {} … ", k + 1, study.name);
-        let _ = std::io::stderr().flush();
+    for (k, program) in all.iter().enumerate() {
+        eprintln!(
+            "[{}/{n}] {} → book/src/generated/{}/",
+            k + 1,
+            program.example,
+            program.chapter
+        );
         let t = Instant::now();
-        match (study.run)(&dir) {
-            Ok(()) => eprintln!("done in {:.1} s", t.elapsed().as_secs_f64()),
-            Err(e) => {
+        let status = std::process::Command::new(&cargo)
+            .args(["run", "--quiet", "--release", "--manifest-path"])
+            .arg(&manifest)
+            .args(["--example", program.example])
+            .status();
+        match status {
+            Ok(s) if s.success() => {
+                eprintln!("      done in {:.1} s", t.elapsed().as_secs_f64())
+            }
+            other => {
                 eprintln!(
-                    "FAILED after {:.1} s: {}",
-                    t.elapsed().as_secs_f64(),
-                    one_line(&e.to_string())
+                    "      FAILED after {:.1} s ({other:?})",
+                    t.elapsed().as_secs_f64()
                 );
-                failed.push(study.name);
+                failed.push(program.example);
             }
         }
     }
     let total = start.elapsed().as_secs_f64();
     eprintln!(
-        "reproduced {} of {n} studies in {total:.1} s",
+        "reproduced {} of {n} chapters in {total:.1} s",
         n - failed.len()
     );
     if failed.is_empty() {
@@ -147,7 +171,7 @@ fn reproduce(only: Option<String>) -> Result<(), Failure> {
     } else {
         Err(Failure {
             message: format!(
-                "{} of {n} studies failed: {}",
+                "{} of {n} chapter programs failed: {}",
                 failed.len(),
                 failed.join(", ")
             ),

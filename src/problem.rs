@@ -25,6 +25,8 @@ pub struct Problem {
     pub bodies: Vec<Body>,
     pub map: DofMap,
     pub pairs: Vec<ContactPair>,
+    /// The applied loads (body indices into `bodies`).
+    pub loads: Vec<Load>,
     pub points: Vec<ContactPoint>,
     /// F − K_fc ū over the free DOFs.
     pub rhs: Vec<f64>,
@@ -92,6 +94,7 @@ impl Problem {
             bodies,
             map,
             pairs,
+            loads: loads.to_vec(),
             points,
             rhs,
             k,
@@ -333,26 +336,5 @@ impl Problem {
             }
         }
         Ok(())
-    }
-
-    /// Contact pressure −[P(u)]₋ ≥ 0 at every contact point, with the point,
-    /// for a full displacement vector.
-    pub fn pressures(&self, full: &[f64]) -> Vec<(&ContactPoint, f64)> {
-        self.points
-            .iter()
-            .map(|cp| (cp, -cp.p(full).min(0.0)))
-            .collect()
-    }
-
-    /// Resultant force the master exerts on the slave, ∫ −\[P\]₋ n¹ dΓ with
-    /// the sign that makes it oppose penetration: Σ w \[P\]₋ n¹.
-    pub fn contact_force(&self, full: &[f64]) -> [f64; 2] {
-        let mut f = [0.0; 2];
-        for cp in &self.points {
-            let pm = cp.p(full).min(0.0);
-            f[0] += cp.weight * pm * cp.normal[0];
-            f[1] += cp.weight * pm * cp.normal[1];
-        }
-        f
     }
 }

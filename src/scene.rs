@@ -28,14 +28,17 @@
 //! assert!(err.contains("`body[0].material.young` = -1"), "{err}");
 //! ```
 
-use crate::assembly::{load_vector, Load};
-use crate::contact::{ContactPair, Integration, Master};
+use crate::assembly::Load;
+use crate::contact::{ContactPair, Master, Nitsche};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
 use crate::material::Material;
 use crate::nurbs::{KnotVector, NurbsPatch, Side};
+use crate::post::{self, PressureProfile};
 use crate::problem::Problem;
+use crate::report::history::history_table;
+use crate::report::table::{Column, Format, Table, Unit};
 use crate::report::{atomic, plot, vtu};
 use crate::solver::{self, SolverOptions};
 use crate::space::Space;
@@ -197,25 +200,9 @@ pub struct ContactSpec {
     pub slave: String,
     pub slave_side: Side,
     pub master: MasterSpec,
-    /// 0 (the paper), 1 (symmetric) or −1 (skew-symmetric).
+    /// θ, the penalty factor and the integration rule of the pair.
     #[serde(default)]
-    pub theta: f64,
-    /// Multiplies the empirical penalty (11).
-    #[serde(default = "one")]
-    pub penalty_factor: f64,
-    #[serde(default = "segment_integration")]
-    pub integration: Integration,
-    /// Gauss points per element or segment; default p + 2.
-    #[serde(default)]
-    pub gauss_points: Option<usize>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-fn segment_integration() -> Integration {
-    Integration::Segment
+    pub nitsche: Nitsche,
 }
 
 /// The master of a contact pair: either `{ rigid_segment = { from, to } }`
@@ -251,9 +238,10 @@ pub struct OutputSpec {
     pub vtu_subdivisions: usize,
     /// `iterations.csv`: the solver's iteration history.
     pub iterations: bool,
-    /// `pressure_profile.csv`: pair, x, y, pressure at every contact point.
+    /// `pressure_profile.csv`: pair, x, y, the bracket P and the pressure
+    /// −[P]₋ on the dense profile ([`crate::post::PressureProfile::dense`]).
     pub pressure_profile: bool,
-    /// `summary.toml`: iterations, contact force, applied force.
+    /// `summary.toml`: iterations, forces, and per contact pair p0 and half_width.
     pub summary: bool,
     /// `pressure_profile.svg`: the pressure profile as a figure.
     pub figures: bool,
@@ -343,9 +331,23 @@ struct Summary<'a> {
     active_points: usize,
     contact_force: [f64; 2],
     applied_force: [f64; 2],
+    /// One entry per contact pair: p0, half_width, contact force.
+    contact: Vec<PairSummary>,
     /// The solver options as TOML (a `usize::MAX` limit, which TOML cannot
     /// hold, is written as the largest TOML integer).
     solver: toml::Value,
+}
+
+/// What `summary.toml` reports of one contact pair, measured by
+/// [`crate::post`] on the dense pressure profile.
+#[derive(Serialize)]
+struct PairSummary {
+    /// Peak contact pressure.
+    p0: f64,
+    /// Contact half-width, along the contact tangent at the peak.
+    half_width: f64,
+    /// Force of the master on the slave.
+    contact_force: [f64; 2],
 }
 
 /// `opts` as a TOML table, saturating integers beyond TOML's i64 range.
@@ -679,6 +681,33 @@ impl NurbsSpec {
 }
 
 impl RefineSpec {
+    /// k-refinement: elevate to `degree`, split into `elements` spans.
+    pub fn iga(degree: usize, elements: [usize; 2]) -> Self {
+        Self {
+            degree: Some(degree),
+            elements,
+            lagrange: None,
+        }
+    }
+
+    /// The isoparametric Lagrange (FEM) interpolant of `degree`.
+    pub fn lagrange(degree: usize, elements: [usize; 2]) -> Self {
+        Self {
+            degree: None,
+            elements,
+            lagrange: Some(degree),
+        }
+    }
+
+    /// `IGA p = 2`, `FEM Q1`, ...
+    pub fn label(&self) -> String {
+        match (self.degree, self.lagrange) {
+            (_, Some(q)) => format!("FEM Q{q}"),
+            (Some(p), None) => format!("IGA p = {p}"),
+            (None, None) => "geometry as given".into(),
+        }
+    }
+
     fn validate(&self, f: &str, geometry_degree: usize) -> Result<()> {
         for (d, &n) in self.elements.iter().enumerate() {
             in_range(format!("{f}.elements[{d}]"), n, 1, MAX_ELEMENTS)?;
@@ -718,6 +747,26 @@ impl RefineSpec {
 }
 
 impl Scene {
+    /// The body named `name`, to change it before building.
+    pub fn body_mut(&mut self, name: &str) -> Result<&mut BodySpec> {
+        let known: Vec<String> = self.bodies.iter().map(|b| b.name.clone()).collect();
+        self.bodies
+            .iter_mut()
+            .find(|b| b.name == name)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "body",
+                    name,
+                    format!("no such body (bodies: {})", known.join(", ")),
+                )
+            })
+    }
+
+    /// The Nitsche parameters of every contact pair, to change them before building.
+    pub fn nitsche_mut(&mut self) -> impl Iterator<Item = &mut Nitsche> {
+        self.contacts.iter_mut().map(|c| &mut c.nitsche)
+    }
+
     /// Index of each body by name.
     fn body_index(&self) -> HashMap<&str, usize> {
         self.bodies
@@ -842,17 +891,7 @@ impl Scene {
                     ))
                 }
             }
-            if !(c.theta.is_finite() && [-1.0, 0.0, 1.0].contains(&c.theta)) {
-                return Err(Error::invalid(
-                    format!("{f}.theta"),
-                    show(c.theta),
-                    "must be 1 (symmetric), 0 (the paper) or -1 (skew-symmetric)",
-                ));
-            }
-            positive(format!("{f}.penalty_factor"), c.penalty_factor)?;
-            if let Some(n) = c.gauss_points {
-                in_range(format!("{f}.gauss_points"), n, 1, 30)?;
-            }
+            c.nitsche.validate(&format!("{f}.nitsche"))?;
         }
         self.solver.validate("solver")?;
         let o = &self.output;
@@ -887,7 +926,6 @@ impl Scene {
 /// A built scene: the problem and the loads it was assembled with.
 struct Built {
     problem: Problem,
-    loads: Vec<Load>,
 }
 
 /// True if every control point of `side` coincides with the first: the
@@ -986,14 +1024,11 @@ impl Scene {
                 slave,
                 slave_side: c.slave_side,
                 master,
-                theta: c.theta,
-                penalty_factor: c.penalty_factor,
-                integration: c.integration,
-                gauss_points: c.gauss_points,
+                nitsche: c.nitsche,
             });
         }
         let problem = Problem::new(bodies, map, &loads, pairs)?;
-        Ok(Built { problem, loads })
+        Ok(Built { problem })
     }
 
     /// Validates the scene and assembles its [`Problem`] (no solve).
@@ -1012,44 +1047,56 @@ impl Scene {
     pub fn run(&self, out_dir: impl AsRef<Path>) -> Result<RunReport> {
         let start = Instant::now();
         let out_dir = out_dir.as_ref();
-        let Built { problem, loads } = self.assemble()?;
+        let Built { problem } = self.assemble()?;
         let solution = solver::solve(&problem, &self.solver)?;
         let full = &solution.full;
-        let contact_force = problem.contact_force(full);
+        let resultants = post::contact_resultants(&problem, full);
+        let contact_force = post::contact_resultant(&problem, full);
         let active_points = problem.active_points(&solution.u);
         let history = &solution.history;
         let o = &self.output;
         let title = self.title.as_deref().unwrap_or("scene");
 
-        let applied_force = if o.summary {
-            Some(applied_force(&problem.bodies, &loads)?)
+        let profile = if o.pressure_profile || o.figures || o.summary {
+            Some(PressureProfile::dense(&problem, full)?)
         } else {
             None
-        };
-        let profile = if o.pressure_profile || o.figures {
-            pressure_profile(&problem, full)
-        } else {
-            Vec::new()
         };
 
         // Everything textual, in memory first.
         let mut texts: Vec<(&str, String)> = Vec::new();
         if o.iterations {
-            texts.push((files::ITERATIONS, history.to_csv()));
+            texts.push((
+                files::ITERATIONS,
+                history_table(history, Unit::None)?.to_csv(),
+            ));
         }
-        if o.pressure_profile {
-            let mut s = String::from("pair,x,y,pressure\n");
-            for (pair, x, y, p) in &profile {
-                s.push_str(&format!("{pair},{x:.12e},{y:.12e},{p:.12e}\n"));
-            }
-            texts.push((files::PRESSURE_PROFILE, s));
+        if let (true, Some(profile)) = (o.pressure_profile, &profile) {
+            texts.push((files::PRESSURE_PROFILE, profile_table(profile)?.to_csv()));
         }
         if o.vtu {
             let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
             mesh.validate()?;
             texts.push((files::VTU, mesh.to_xml()));
         }
-        if let Some(applied_force) = applied_force {
+        let applied_force = if o.summary {
+            Some(post::applied_resultant(&problem)?)
+        } else {
+            None
+        };
+        if let (Some(applied_force), Some(profile)) = (applied_force, &profile) {
+            let contact = resultants
+                .iter()
+                .enumerate()
+                .map(|(k, &f)| {
+                    let m = profile.measures(k);
+                    PairSummary {
+                        p0: m.p0,
+                        half_width: m.half_width,
+                        contact_force: f,
+                    }
+                })
+                .collect();
             let summary = Summary {
                 title,
                 dofs: problem.n(),
@@ -1060,6 +1107,7 @@ impl Scene {
                 active_points,
                 contact_force,
                 applied_force,
+                contact,
                 solver: solver_table(&self.solver),
             };
             let text = toml::to_string(&summary)
@@ -1071,21 +1119,21 @@ impl Scene {
         // The figure validates its data before drawing and is the only
         // output rendered straight to disk, so it goes first: if it fails,
         // nothing has been written.
-        if o.figures {
+        if let (true, Some(profile)) = (o.figures, &profile) {
             let pairs = self.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
                 .map(|k| {
                     let points = profile
+                        .pair(k)
                         .iter()
-                        .filter(|p| p.0 == k)
-                        .map(|p| (p.1, p.3))
+                        .map(|p| (p.x[0], p.pressure()))
                         .collect();
                     let label = if pairs > 1 {
                         format!("contact[{k}]")
                     } else {
                         String::new()
                     };
-                    plot::Series::line(label, points).with_markers()
+                    plot::Series::line(label, points)
                 })
                 .collect();
             let axes = plot::Axes {
@@ -1118,26 +1166,23 @@ impl Scene {
     }
 }
 
-/// (pair, x, y, pressure) at every contact point, sorted by pair and x.
-fn pressure_profile(problem: &Problem, full: &[f64]) -> Vec<(usize, f64, f64, f64)> {
-    let mut rows: Vec<(usize, f64, f64, f64)> = problem
-        .pressures(full)
-        .into_iter()
-        .map(|(cp, p)| (cp.pair, cp.x[0], cp.x[1], p))
-        .collect();
-    rows.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    rows
-}
-
-/// Resultant of the external loads: the load vector with no DOF fixed,
-/// summed per component (the basis is a partition of unity, so this is
-/// ∫ f dΩ + ∫ t dΓ exactly up to quadrature).
-fn applied_force(bodies: &[Body], loads: &[Load]) -> Result<[f64; 2]> {
-    let free = DofMap::builder(bodies).build();
-    let f = load_vector(bodies, &free, loads)?;
-    let mut sum = [0.0; 2];
-    for (g, v) in f.iter().enumerate() {
-        sum[g % 2] += v;
+/// The dense pressure profile as a table: pair, position, bracket and pressure.
+fn profile_table(profile: &PressureProfile) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("pair", "pair"),
+        Column::new("x", "x", Unit::None, Format::Sci(6)),
+        Column::new("y", "y", Unit::None, Format::Sci(6)),
+        Column::new("bracket", "P", Unit::None, Format::Sci(6)),
+        Column::new("pressure", "pressure", Unit::None, Format::Sci(6)),
+    ]);
+    for s in profile.samples() {
+        t.push(vec![
+            s.pair.into(),
+            s.x[0].into(),
+            s.x[1].into(),
+            s.bracket.into(),
+            s.pressure().into(),
+        ])?;
     }
-    Ok(sum)
+    Ok(t)
 }

@@ -3,9 +3,9 @@
 
 mod common;
 
-use common::perturbed_solution;
-use iga_contact::benchmarks::{Hertz, Taylor};
-use iga_contact::contact::Integration;
+use common::{hertz, hertz_scene, perturbed_solution, taylor};
+use iga_contact::assembly::Load;
+use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::{Kernel, Problem};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 
@@ -61,14 +61,8 @@ fn check_jacobian(p: &Problem, u: &[f64]) -> usize {
 
 #[test]
 fn secant_matrix_is_the_jacobian_on_a_rigid_master() {
-    for theta in [0.0, 1.0, -1.0] {
-        let p = Hertz {
-            elements: 4,
-            theta,
-            ..Hertz::default()
-        }
-        .build()
-        .unwrap();
+    for theta in Theta::ALL {
+        let p = hertz(2, 4, theta);
         let u = perturbed_solution(&p, 1e-3, 7);
         let active = p.active_points(&u);
         assert!(
@@ -86,14 +80,8 @@ fn secant_matrix_is_the_jacobian_on_a_rigid_master() {
 
 #[test]
 fn secant_matrix_is_the_jacobian_between_two_bodies() {
-    for theta in [0.0, 1.0, -1.0] {
-        let p = Taylor {
-            theta,
-            integration: Integration::Gauss,
-            ..Taylor::default()
-        }
-        .build()
-        .unwrap();
+    for theta in Theta::ALL {
+        let p = taylor(Integration::Gauss, theta);
         let u = perturbed_solution(&p, 1e-2, 7);
         assert_eq!(p.active_points(&u), p.points.len());
         assert_eq!(check_jacobian(&p, &u), p.n(), "θ = {theta}");
@@ -102,14 +90,9 @@ fn secant_matrix_is_the_jacobian_between_two_bodies() {
 
 #[test]
 fn tied_kernel_is_symmetric_only_for_theta_one() {
-    for (theta, symmetric) in [(1.0, true), (0.0, false), (-1.0, false)] {
-        let p = Hertz {
-            elements: 4,
-            theta,
-            ..Hertz::default()
-        }
-        .build()
-        .unwrap();
+    for theta in Theta::ALL {
+        let symmetric = theta == Theta::Symmetric;
+        let p = hertz(2, 4, theta);
         let k = dense(&p, Kernel::Tied);
         let scale = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
         let asym = (0..p.n())
@@ -126,12 +109,13 @@ fn tied_kernel_is_symmetric_only_for_theta_one() {
 
 #[test]
 fn a_body_pulled_away_from_the_floor_is_reported_as_floating() {
-    let p = Hertz {
-        elements: 4,
-        ..Hertz::default()
+    let mut scene = hertz_scene(2, 4, Theta::Incomplete);
+    for l in &mut scene.loads {
+        if let Load::BodyForce { force, .. } = l {
+            force[1] = -force[1];
+        }
     }
-    .build_with(Hertz::material(), -1.0)
-    .unwrap();
+    let p = scene.build().unwrap();
     for kind in [SolverKind::Bfgs, SolverKind::Newton] {
         let opts = SolverOptions {
             max_iter: 40,
@@ -146,18 +130,13 @@ fn a_body_pulled_away_from_the_floor_is_reported_as_floating() {
 
 #[test]
 fn the_disk_has_exactly_one_floating_mode_and_the_blocks_one_each() {
-    let h = Hertz {
-        elements: 2,
-        ..Hertz::default()
-    }
-    .build()
-    .unwrap();
+    let h = hertz(2, 2, Theta::Incomplete);
     assert_eq!(
         h.floating_modes().len(),
         1,
         "vertical translation of the disk"
     );
-    let t = Taylor::default().build().unwrap();
+    let t = taylor(Integration::Segment, Theta::Incomplete);
     assert_eq!(
         t.floating_modes().len(),
         1,

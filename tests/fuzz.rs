@@ -80,7 +80,10 @@ fn small(scene: &Scene) -> bool {
             .as_ref()
             .is_none_or(|r| r.elements.iter().all(|&n| n <= 8) && r.degree.is_none_or(|p| p <= 4));
         geometry_ok && refine_ok && ok_quad(b.quadrature)
-    }) && scene.contacts.iter().all(|c| ok_quad(c.gauss_points))
+    }) && scene
+        .contacts
+        .iter()
+        .all(|c| ok_quad(c.nitsche.gauss_points))
         && scene.bodies.len() <= 4
 }
 

@@ -4,28 +4,16 @@
 
 mod common;
 
-use common::{perturbed_solution, rough};
-use iga_contact::benchmarks::{Hertz, Taylor};
-use iga_contact::contact::Integration;
+use common::{hertz_scene, norm, perturbed_solution, rough, taylor_scene};
+use iga_contact::contact::{Integration, Theta};
 use iga_contact::linsolve::{mul, mul_transpose, Factor, Factoriser, Method};
-use iga_contact::material::Material;
 use iga_contact::problem::{Kernel, Problem};
 use iga_contact::solver::history::Event;
 use iga_contact::solver::kernel::{factor_kernel, Factorisation};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
 fn hertz(elements: usize, theta: f64) -> Problem {
-    Hertz {
-        elements,
-        theta,
-        ..Hertz::default()
-    }
-    .build()
-    .unwrap()
+    common::hertz(2, elements, Theta::from_value(theta).unwrap())
 }
 
 /// A displacement near the solution with a mixed active set.
@@ -121,14 +109,9 @@ fn the_low_rank_solve_equals_lu() {
 #[test]
 fn the_symmetric_theta_one_kernel_is_indefinite() {
     for factor in [1.0, 100.0] {
-        let p = Hertz {
-            elements: 8,
-            theta: 1.0,
-            penalty_factor: factor,
-            ..Hertz::default()
-        }
-        .build()
-        .unwrap();
+        let mut scene = hertz_scene(2, 8, Theta::Symmetric);
+        scene.nitsche_mut().for_each(|n| n.penalty_factor = factor);
+        let p = scene.build().unwrap();
         let k = p.kernel(Kernel::Tied).unwrap();
         let err = Factoriser::default()
             .factor(&k, Method::Cholesky)
@@ -158,12 +141,12 @@ fn theta_one_falls_back_to_lu() {
 #[test]
 fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
     // lifted clear of the floor: no active point, S = K is singular
-    let p = Hertz {
-        elements: 4,
-        ..Hertz::default()
+    let mut scene = hertz_scene(2, 4, Theta::Incomplete);
+    if let iga_contact::scene::GeometrySpec::HalfDisk { center, .. } = &mut scene.bodies[0].geometry
+    {
+        center[1] += 0.01;
     }
-    .build_lifted(Hertz::material(), 1.0, 0.01)
-    .unwrap();
+    let p = scene.build().unwrap();
     let u = vec![0.0; p.n()];
     assert_eq!(p.active_points(&u), 0);
     let split = p.kernel_split(Kernel::Secant(&u)).unwrap().unwrap();
@@ -188,16 +171,9 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
 #[test]
 fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
     // a contrast of 10⁴ makes S much worse conditioned than the kernel
-    let upper = Material {
-        young: Taylor::material().young * 1e4,
-        ..Taylor::material()
-    };
-    let p = Taylor {
-        integration: Integration::Segment,
-        ..Taylor::default()
-    }
-    .build_with(Taylor::material(), upper, 1.0)
-    .unwrap();
+    let mut scene = taylor_scene(Integration::Segment, Theta::Incomplete);
+    scene.body_mut("upper").unwrap().material.young *= 1e4;
+    let p = scene.build().unwrap();
     let s = solve(&p, &SolverOptions::default()).unwrap();
     assert!(s.history.count(|e| *e == Event::KernelRefined) >= 1);
     let lu = solve(
@@ -213,12 +189,7 @@ fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
 
 #[test]
 fn both_factorisations_give_the_same_solutions() {
-    let taylor = Taylor {
-        integration: Integration::Segment,
-        ..Taylor::default()
-    }
-    .build()
-    .unwrap();
+    let taylor = common::taylor(Integration::Segment, Theta::Incomplete);
     let cases = [
         ("hertz 8²", hertz(8, 0.0)),
         ("hertz 8², θ = −1", hertz(8, -1.0)),

@@ -4,7 +4,9 @@
 
 pub mod nitsche;
 pub mod pair;
+pub mod params;
 pub mod penalty;
 pub mod projection;
 
-pub use pair::{contact_points, ContactPair, ContactPoint, Integration, Master};
+pub use pair::{contact_points, ContactPair, ContactPoint, Master};
+pub use params::{Integration, Nitsche, Theta};

@@ -1,13 +1,13 @@
 //! Contact pairs and their quadrature points: everything about a point of
 //! Γc that does not depend on the displacement (small deformation).
 
+use super::params::{Integration, Nitsche};
 use super::penalty::{empirical_penalty, PenaltyInputs};
 use super::projection::{closest_point, Projection};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::nurbs::{NurbsCurve, Side};
 use crate::quadrature;
-use serde::{Deserialize, Serialize};
 
 /// What the slave side is pressed against.
 #[derive(Clone, Debug)]
@@ -20,44 +20,23 @@ pub enum Master {
     Body { body: usize, side: Side },
 }
 
-/// How the contact integral over Γc is evaluated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Integration {
-    /// Gauss points per slave element: simple, but the integrand has kinks
-    /// where master knots project, so it is not integrated exactly.
-    Gauss,
-    /// Each slave element is cut where master knots project; the integrand
-    /// is smooth on every segment and the contact patch test is passed exactly.
-    Segment,
-}
-
 /// A slave side, a master, and the Nitsche parameters of Eq. (9)–(11).
 #[derive(Clone, Debug)]
 pub struct ContactPair {
     pub slave: usize,
     pub slave_side: Side,
     pub master: Master,
-    /// θ ∈ {1, 0, −1}; the paper uses 0.
-    pub theta: f64,
-    /// Multiplies the empirical penalty (11); 1 reproduces the paper.
-    pub penalty_factor: f64,
-    pub integration: Integration,
-    /// Gauss points per element or segment; default p + 2.
-    pub gauss_points: Option<usize>,
+    pub nitsche: Nitsche,
 }
 
 impl ContactPair {
-    /// The paper's choices: θ = 0, penalty factor 1, segment integration.
+    /// A pair with the default [`Nitsche`] parameters (the paper's).
     pub fn new(slave: usize, slave_side: Side, master: Master) -> Self {
         Self {
             slave,
             slave_side,
             master,
-            theta: 0.0,
-            penalty_factor: 1.0,
-            integration: Integration::Segment,
-            gauss_points: None,
+            nitsche: Nitsche::default(),
         }
     }
 }
@@ -148,21 +127,7 @@ fn validate(pair: &ContactPair, ip: usize, bodies: &[Body]) -> Result<()> {
             ));
         }
     }
-    if !pair.theta.is_finite() || ![-1.0, 0.0, 1.0].contains(&pair.theta) {
-        return Err(Error::invalid(f("theta"), pair.theta, "must be 1, 0 or -1"));
-    }
-    if !(pair.penalty_factor.is_finite() && pair.penalty_factor > 0.0) {
-        return Err(Error::invalid(
-            f("penalty_factor"),
-            pair.penalty_factor,
-            "must be positive and finite",
-        ));
-    }
-    if let Some(n) = pair.gauss_points {
-        if n == 0 || n > 30 {
-            return Err(Error::invalid(f("gauss_points"), n, "must lie in 1..=30"));
-        }
-    }
+    pair.nitsche.validate(&f("nitsche"))?;
     Ok(())
 }
 
@@ -198,9 +163,9 @@ pub fn contact_points(
                 )
             }
         };
-        let n_gauss = pair.gauss_points.unwrap_or(degree + 2);
+        let n_gauss = pair.nitsche.points(degree);
         let slave_curve = slave.space.patch.side_curve(pair.slave_side);
-        let cuts = match pair.integration {
+        let cuts = match pair.nitsche.integration {
             Integration::Gauss => Vec::new(),
             Integration::Segment => projected_master_knots(master.curve(), &slave_curve)?,
         };
@@ -295,7 +260,7 @@ fn make_point(
             h_slave: be.length,
             h_master,
         },
-        pair.penalty_factor,
+        pair.nitsche.penalty_factor,
     );
 
     // σ_n = mᵀ D B u with m = (n_x², n_y², 2 n_x n_y) in Voigt notation.
@@ -337,7 +302,7 @@ fn make_point(
         normal,
         g0,
         gamma,
-        theta: pair.theta,
+        theta: pair.nitsche.theta.value(),
         weight: w * len,
         dofs,
         sn,

@@ -91,25 +91,4 @@ impl History {
     pub fn skipped_updates(&self) -> usize {
         self.count(|e| matches!(e, Event::SkippedUpdate { .. }))
     }
-
-    /// The table as CSV, one row per iteration.
-    pub fn to_csv(&self) -> String {
-        let mut s = String::from(
-            "iteration,residual,relative_residual,update,max_displacement,active_points,events\n",
-        );
-        for r in &self.rows {
-            let ev: Vec<String> = r.events.iter().map(|e| e.to_string()).collect();
-            s.push_str(&format!(
-                "{},{:.6e},{:.6e},{:.6e},{:.9e},{},{}\n",
-                r.iteration,
-                r.residual,
-                r.relative_residual,
-                r.update,
-                r.max_displacement,
-                r.active_points,
-                ev.join("; ")
-            ));
-        }
-        s
-    }
 }

@@ -1,0 +1,740 @@
+//! Hertz contact of an elastic disk on a rigid plane: the program behind
+//! the chapter "Hertz contact of a disk on a rigid plane" (the paper's
+//! Fig. 4, Table 2, Figs. 5 and 6).
+//!
+//! The scene `data/scenes/hertz.toml` models the right half of the disk,
+//! loaded by its own weight and resting on a rigid floor; symmetry holds
+//! u_x = 0 on the diameter. The program solves it on a ladder of meshes
+//! with four solvers, records the 8×8 iteration history, measures the peak
+//! pressure and the contact half-width on every mesh against Hertz and a
+//! fine reference, and draws the figures, into `book/src/generated/hertz/`.
+//!
+//! Run it with `cargo run --release --example hertz`.
+
+#[path = "../common/hertz.rs"]
+mod setup;
+
+use iga_contact::error::{Error, Result};
+use iga_contact::nurbs::Side;
+use iga_contact::post::hertz::Hertz;
+use iga_contact::post::{self, relative, PressureProfile};
+use iga_contact::problem::Problem;
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::drawing::{control_net, element_lines, field_cells, labelled, Placement};
+use iga_contact::report::history::history_table;
+use iga_contact::report::plot::{
+    field_figure, geometry_figure, line_chart, Axes, LineKind, Polyline, Series, BLACK_INDEX,
+};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
+use iga_contact::report::vtu::sample_bodies;
+use iga_contact::scene::Scene;
+use iga_contact::solver::history::{Event, History};
+use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
+use iga_contact::timing::median_time;
+use std::collections::BTreeMap;
+
+// ANCHOR: constants
+/// The iteration at which the paper's correction fired on the 8×8 mesh.
+const PAPER_CORRECTION_ITERATION: usize = 13;
+/// Degrees and meshes (elements per direction) of the solver ladder.
+const LADDER_DEGREES: [usize; 2] = [2, 3];
+const LADDER_ELEMENTS: [usize; 4] = [8, 16, 32, 64];
+/// Meshes of the convergence study (Fig. 6).
+const CONVERGENCE_ELEMENTS: [usize; 6] = [4, 8, 16, 32, 64, 128];
+/// The converged reference: (degree, elements per direction).
+const REFERENCE: (usize, usize) = (3, 128);
+/// Meshes of the pressure-profile figure (p = 2).
+const PROFILE_ELEMENTS: [usize; 2] = [8, 64];
+// ANCHOR_END: constants
+
+// ANCHOR: solvers
+/// The solvers of the ladder, by the names `ladder.csv` uses: the
+/// library's default BFGS, the paper's iteration (the scene's own
+/// `[solver]` table: full steps), BFGS never corrected, and Newton.
+fn solvers(scene: &Scene) -> [(&'static str, SolverOptions); 4] {
+    [
+        ("bfgs", SolverOptions::default()),
+        ("bfgs_paper", scene.solver),
+        (
+            "bfgs_no_correction",
+            SolverOptions::with_kind(SolverKind::BfgsNoCorrection),
+        ),
+        ("newton", SolverOptions::with_kind(SolverKind::Newton)),
+    ]
+}
+// ANCHOR_END: solvers
+
+/// One converged solve, measured.
+struct Run {
+    degree: usize,
+    elements: usize,
+    solver: &'static str,
+    problem: Problem,
+    solution: Solution,
+    p0: f64,
+    half_width: f64,
+    /// Vertical force of the floor on the half disk.
+    contact_force: f64,
+    /// Vertical resultant of the applied load (downwards, so negative).
+    applied_force: f64,
+    /// Build + solve, wall time.
+    seconds: f64,
+}
+
+/// A solve that did not converge.
+struct Failure {
+    degree: usize,
+    elements: usize,
+    solver: &'static str,
+    history: History,
+    reason: String,
+}
+
+// ANCHOR: measure
+/// Builds and solves the p-degree scene on `elements`², measuring p₀ and a
+/// on the dense profile. Non-convergence is a result, kept as a Failure.
+fn run(
+    degree: usize,
+    elements: usize,
+    solver: &'static str,
+    opts: &SolverOptions,
+) -> Result<std::result::Result<Run, Failure>> {
+    let scene = setup::scene(setup::iga(degree, elements))?;
+    let timed = median_time(1, || {
+        let problem = scene.build()?;
+        let solution = solve(&problem, opts);
+        Ok((problem, solution))
+    })?;
+    let (problem, solution) = timed.value;
+    let solution = match solution {
+        Ok(s) => s,
+        Err(Error::NotConverged { reason, history }) => {
+            return Ok(Err(Failure {
+                degree,
+                elements,
+                solver,
+                history,
+                reason,
+            }))
+        }
+        Err(e) => return Err(e),
+    };
+    let m = PressureProfile::dense(&problem, &solution.full)?.measures(0);
+    Ok(Ok(Run {
+        degree,
+        elements,
+        solver,
+        p0: m.p0,
+        half_width: m.half_width,
+        contact_force: post::contact_resultant(&problem, &solution.full)[1],
+        applied_force: post::applied_resultant(&problem)?[1],
+        seconds: timed.seconds,
+        problem,
+        solution,
+    }))
+}
+// ANCHOR_END: measure
+
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("hertz")?;
+    let base = setup::scene(setup::iga(2, 8))?;
+    let exact = setup::analytic(&base)?;
+
+    // ANCHOR: ladder
+    let mut ladder = Vec::new();
+    let mut failures = Vec::new();
+    for p in LADDER_DEGREES {
+        for n in LADDER_ELEMENTS {
+            for (name, opts) in solvers(&base) {
+                match run(p, n, name, &opts)? {
+                    Ok(r) => ladder.push(r),
+                    Err(f) => failures.push(f),
+                }
+            }
+        }
+    }
+    // ANCHOR_END: ladder
+    chapter.table("ladder", &ladder_table(&ladder)?)?;
+    chapter.table("failures", &failure_table(&failures)?)?;
+
+    // Table 2: the paper's iteration and the default on 8×8, p = 2.
+    let find = |solver: &str, p: usize, n: usize| {
+        ladder
+            .iter()
+            .find(|r| r.solver == solver && r.degree == p && r.elements == n)
+    };
+    let paper = find("bfgs_paper", 2, 8).ok_or_else(|| missing("bfgs_paper 8²"))?;
+    let default = find("bfgs", 2, 8).ok_or_else(|| missing("bfgs 8²"))?;
+    for (name, r) in [("iterations_8x8_paper", paper), ("iterations_8x8", default)] {
+        chapter.table(name, &history_table(&r.solution.history, Unit::Metre)?)?;
+    }
+    residual_figure(&chapter, paper, default)?;
+
+    // Figs. 4 and 5 and the VTU, on the paper's mesh.
+    model_figure(&chapter, &default.problem)?;
+    uy_figure(&chapter, default)?;
+    sample_bodies(
+        &default.problem.bodies,
+        &default.problem.map,
+        &default.solution.full,
+        4,
+    )?
+    .write(chapter.path("hertz.vtu"))?;
+
+    // ANCHOR: convergence
+    // Fig. 6: Newton solutions (the discrete solution does not depend on
+    // the solver, see the ladder), reused from the ladder where it has them.
+    let mut newton: BTreeMap<(usize, usize), (f64, f64, usize)> = ladder
+        .iter()
+        .filter(|r| r.solver == "newton")
+        .map(|r| ((r.degree, r.elements), (r.p0, r.half_width, r.problem.n())))
+        .collect();
+    let newton_opts = SolverOptions::with_kind(SolverKind::Newton);
+    let mut measured = |p: usize, n: usize| -> Result<(f64, f64, usize)> {
+        if let Some(&m) = newton.get(&(p, n)) {
+            return Ok(m);
+        }
+        let r = run(p, n, "newton", &newton_opts)?.map_err(|f| not_converged(&f))?;
+        let m = (r.p0, r.half_width, r.problem.n());
+        newton.insert((p, n), m);
+        Ok(m)
+    };
+    let reference = measured(REFERENCE.0, REFERENCE.1)?;
+    let mut rows = Vec::new();
+    for p in LADDER_DEGREES {
+        for n in CONVERGENCE_ELEMENTS {
+            rows.push((p, n, measured(p, n)?));
+        }
+    }
+    // ANCHOR_END: convergence
+    chapter.table("convergence", &convergence_table(&rows, &exact, reference)?)?;
+    chapter.table("reference", &reference_table(&exact, reference)?)?;
+    convergence_figures(&chapter, &rows, &exact, reference)?;
+
+    // The pressure profiles, against Hertz's ellipse.
+    let mut profiles = Vec::new();
+    for n in PROFILE_ELEMENTS {
+        let r = run(2, n, "newton", &newton_opts)?.map_err(|f| not_converged(&f))?;
+        profiles.push((n, PressureProfile::dense(&r.problem, &r.solution.full)?));
+    }
+    profile_outputs(&chapter, &profiles, &exact)?;
+
+    // ANCHOR: facts
+    let f = chapter.facts();
+    f.number("weight", exact.load, Format::Fixed(0))?;
+    f.number("half_load", exact.load / 2.0, Format::Fixed(0))?;
+    f.number("hertz_a_mm", exact.half_width * 1e3, Format::Fixed(3))?;
+    f.number("hertz_p0_mpa", exact.p0 * 1e-6, Format::Fixed(4))?;
+    f.number(
+        "a_over_r",
+        exact.half_width / exact.radius,
+        Format::Fixed(2),
+    )?;
+    f.number(
+        "a_over_r_squared",
+        (exact.half_width / exact.radius).powi(2),
+        Format::Percent(0),
+    )?;
+    let (rp0, ra, rdofs) = reference;
+    f.count("reference_degree", REFERENCE.0)?;
+    f.count("reference_elements", REFERENCE.1)?;
+    f.count("reference_dofs", rdofs)?;
+    f.number(
+        "reference_p0_vs_hertz",
+        relative(rp0, exact.p0),
+        Format::SignedPercent(1),
+    )?;
+    f.number(
+        "reference_a_vs_hertz",
+        relative(ra, exact.half_width),
+        Format::SignedPercent(1),
+    )?;
+    let (cp0, ca, _) = measured(REFERENCE.0, REFERENCE.1 / 2)?;
+    f.number(
+        "reference_check_p0",
+        relative(cp0, rp0).abs(),
+        Format::Percent(2),
+    )?;
+    f.number(
+        "reference_check_a",
+        relative(ca, ra).abs(),
+        Format::Percent(2),
+    )?;
+    let m8 = PressureProfile::dense(&default.problem, &default.solution.full)?.measures(0);
+    f.number("p0_8x8_mpa", m8.p0 * 1e-6, Format::Fixed(4))?;
+    f.number("a_8x8_mm", m8.half_width * 1e3, Format::Fixed(2))?;
+    f.number(
+        "p0_8x8_vs_hertz",
+        relative(m8.p0, exact.p0),
+        Format::SignedPercent(1),
+    )?;
+    f.number(
+        "a_8x8_vs_hertz",
+        relative(m8.half_width, exact.half_width),
+        Format::SignedPercent(1),
+    )?;
+    f.number(
+        "p0_8x8_vs_reference",
+        relative(m8.p0, rp0),
+        Format::SignedPercent(1),
+    )?;
+    f.number(
+        "a_8x8_vs_reference",
+        relative(m8.half_width, ra),
+        Format::SignedPercent(1),
+    )?;
+    let solver_points = PressureProfile::from_points(
+        &default.problem,
+        &default.problem.points,
+        &default.solution.full,
+    );
+    f.number(
+        "p0_8x8_solver_points_mpa",
+        solver_points.measures(0).p0 * 1e-6,
+        Format::Fixed(4),
+    )?;
+    f.count("paper_correction_iteration", PAPER_CORRECTION_ITERATION)?;
+    for (key, r) in [("paper", paper), ("default", default)] {
+        let h = &r.solution.history;
+        f.count(&format!("{key}_8x8_iterations"), h.len())?;
+        f.count(&format!("{key}_8x8_corrections"), h.corrections())?;
+        let first = h
+            .rows
+            .iter()
+            .position(|row| row.events.contains(&Event::Correction));
+        f.text(
+            &format!("{key}_8x8_first_correction"),
+            first.map_or("none".into(), |k| (k + 1).to_string()),
+        )?;
+    }
+    f.count("contact_points_8x8", default.problem.points.len())?;
+    f.number("uy_max_8x8_mm", -min_uy(default) * 1e3, Format::Fixed(1))?;
+    let force_balance = ladder
+        .iter()
+        .map(|r| relative(r.contact_force, -r.applied_force).abs())
+        .fold(0.0, f64::max);
+    f.number("force_balance", force_balance, Format::Pow10(0))?;
+    let quadrature = ladder
+        .iter()
+        .map(|r| relative(-r.applied_force, exact.load / 2.0).abs())
+        .fold(0.0, f64::max);
+    f.number("load_quadrature", quadrature, Format::Pow10(0))?;
+    f.number("solver_spread", solver_spread(&ladder), Format::Pow10(0))?;
+    for (name, _) in solvers(&base) {
+        let its: Vec<usize> = ladder
+            .iter()
+            .filter(|r| r.solver == name)
+            .map(|r| r.solution.history.len())
+            .collect();
+        let (lo, hi) = (its.iter().min(), its.iter().max());
+        if let (Some(lo), Some(hi)) = (lo, hi) {
+            f.text(&format!("{name}_iterations"), format!("{lo}–{hi}"))?;
+        }
+    }
+    f.count("failures", failures.len())?;
+    // ANCHOR_END: facts
+    chapter.finish()
+}
+
+fn missing(what: &str) -> Error {
+    Error::invalid("hertz ladder", what, "this run did not converge")
+}
+
+fn not_converged(f: &Failure) -> Error {
+    Error::NotConverged {
+        reason: format!(
+            "{} on p = {}, {}²: {}",
+            f.solver, f.degree, f.elements, f.reason
+        ),
+        history: f.history.clone(),
+    }
+}
+
+/// The largest downward displacement of a run.
+fn min_uy(r: &Run) -> f64 {
+    r.solution
+        .full
+        .iter()
+        .skip(1)
+        .step_by(2)
+        .copied()
+        .fold(0.0, f64::min)
+}
+
+/// The largest relative spread of p₀ and a between the solvers on one mesh.
+fn solver_spread(ladder: &[Run]) -> f64 {
+    let mut spread: f64 = 0.0;
+    for a in ladder {
+        for b in ladder
+            .iter()
+            .filter(|b| (b.degree, b.elements) == (a.degree, a.elements))
+        {
+            spread = spread
+                .max(relative(a.p0, b.p0).abs())
+                .max(relative(a.half_width, b.half_width).abs());
+        }
+    }
+    spread
+}
+
+// ANCHOR: tables
+fn ladder_table(ladder: &[Run]) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("degree", "p"),
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("dofs", "DOFs"),
+        Column::plain("solver", "solver"),
+        Column::plain("iterations", "iterations"),
+        Column::plain("corrections", "corrections"),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(2)),
+        Column::new(
+            "contact_force",
+            "F_c",
+            Unit::NewtonPerMetre,
+            Format::Fixed(0),
+        ),
+        Column::new(
+            "applied_force",
+            "F_applied",
+            Unit::NewtonPerMetre,
+            Format::Fixed(0),
+        ),
+        Column::new("seconds", "seconds", Unit::Second, Format::Fixed(3)),
+    ]);
+    for r in ladder {
+        t.push(vec![
+            r.degree.into(),
+            r.elements.into(),
+            r.problem.n().into(),
+            r.solver.into(),
+            r.solution.history.len().into(),
+            r.solution.history.corrections().into(),
+            r.p0.into(),
+            r.half_width.into(),
+            r.contact_force.into(),
+            (-r.applied_force).into(),
+            r.seconds.into(),
+        ])?;
+    }
+    Ok(t)
+}
+// ANCHOR_END: tables
+
+fn failure_table(failures: &[Failure]) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("degree", "p"),
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("solver", "solver"),
+        Column::plain("iterations", "iterations"),
+        Column::plain("corrections", "corrections"),
+        Column::plain("reason", "reason"),
+    ]);
+    for f in failures {
+        t.push(vec![
+            f.degree.into(),
+            f.elements.into(),
+            f.solver.into(),
+            f.history.len().into(),
+            f.history.corrections().into(),
+            f.reason.clone().into(),
+        ])?;
+    }
+    Ok(t)
+}
+
+fn convergence_table(
+    rows: &[(usize, usize, (f64, f64, usize))],
+    exact: &Hertz,
+    (rp0, ra, _): (f64, f64, usize),
+) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("degree", "p"),
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("dofs", "DOFs"),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(3)),
+        Column::new(
+            "p0_error_hertz",
+            "p₀ vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new(
+            "half_width_error_hertz",
+            "a vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new(
+            "p0_error_reference",
+            "p₀ vs ref.",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new(
+            "half_width_error_reference",
+            "a vs ref.",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+    ]);
+    for &(p, n, (p0, a, dofs)) in rows {
+        t.push(vec![
+            p.into(),
+            n.into(),
+            dofs.into(),
+            p0.into(),
+            a.into(),
+            relative(p0, exact.p0).into(),
+            relative(a, exact.half_width).into(),
+            relative(p0, rp0).into(),
+            relative(a, ra).into(),
+        ])?;
+    }
+    Ok(t)
+}
+
+fn reference_table(exact: &Hertz, (rp0, ra, dofs): (f64, f64, usize)) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("solution", "solution"),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(3)),
+        Column::plain("dofs", "DOFs"),
+    ]);
+    t.push(vec![
+        "Hertz".into(),
+        exact.p0.into(),
+        exact.half_width.into(),
+        Cell::Empty,
+    ])?;
+    let name = format!("reference, p = {}, {}²", REFERENCE.0, REFERENCE.1);
+    t.push(vec![name.into(), rp0.into(), ra.into(), dofs.into()])?;
+    Ok(t)
+}
+
+// ANCHOR: figures
+/// Fig. 4: elements, control net, slave arc, symmetry line and floor.
+fn model_figure(chapter: &Chapter, problem: &Problem) -> Result<()> {
+    let patch = &problem.bodies[0].space.patch;
+    let mut lines = labelled(element_lines(patch, LineKind::Thin, 0), "elements");
+    lines.extend(labelled(control_net(patch, 1), "control net"));
+    let slave = patch.side_curve(Side::EtaMin);
+    let (a, b) = (slave.knots.first(), slave.knots.last());
+    let arc = (0..=64)
+        .map(|i| slave.point(a + (b - a) * i as f64 / 64.0))
+        .collect();
+    lines.push(Polyline::new(arc, LineKind::Solid, 3).labelled("slave side Γc (eta_min)"));
+    let top = patch.point(patch.knots[0].first(), patch.knots[1].last());
+    lines.push(
+        Polyline::new(vec![[0.0, 0.0], top], LineKind::Dashed, 2)
+            .labelled("symmetry line, u_x = 0"),
+    );
+    lines.push(floor(patch.points.iter().map(|p| p[0]).fold(0.0, f64::max)));
+    let [e0, e1] = problem.bodies[0].space.n_elements();
+    geometry_figure(
+        chapter.path("model.svg"),
+        &format!("Half disk, p = 2, {e0}×{e1} elements, on a rigid floor"),
+        &lines,
+    )
+}
+
+fn floor(width: f64) -> Polyline {
+    Polyline::new(
+        vec![[-0.1 * width, 0.0], [1.1 * width, 0.0]],
+        LineKind::Solid,
+        BLACK_INDEX,
+    )
+    .labelled("rigid floor y = 0")
+}
+
+/// Fig. 5: u_y on the deformed half disk (true scale).
+fn uy_figure(chapter: &Chapter, r: &Run) -> Result<()> {
+    let cells = field_cells(&r.problem, &r.solution.full, 6, Placement::Deformed, |q| {
+        q.displacement[1] * 1e3
+    })?;
+    let patch = &r.problem.bodies[0].space.patch;
+    let overlay = vec![
+        Polyline::new(patch.outline(64), LineKind::Dashed, BLACK_INDEX).labelled("undeformed"),
+        floor(patch.points.iter().map(|p| p[0]).fold(0.0, f64::max)),
+    ];
+    let [e0, e1] = r.problem.bodies[0].space.n_elements();
+    field_figure(
+        chapter.path("uy.svg"),
+        &format!("Vertical displacement on the deformed half disk (true scale), p = 2, {e0}×{e1}"),
+        "u_y (mm)",
+        &cells,
+        &overlay,
+    )
+}
+
+/// Table 2 as a picture: the relative residual of both 8×8 histories.
+fn residual_figure(chapter: &Chapter, paper: &Run, default: &Run) -> Result<()> {
+    let series = |name: &str, r: &Run| {
+        let pts = r
+            .solution
+            .history
+            .rows
+            .iter()
+            .map(|row| (row.iteration as f64, row.relative_residual))
+            .collect();
+        Series::line(name, pts).with_markers()
+    };
+    line_chart(
+        chapter.path("iterations_8x8.svg"),
+        &Axes {
+            title: "BFGS on 8×8, p = 2".into(),
+            x_label: "iteration".into(),
+            y_label: "‖R‖ / ‖R₀‖".into(),
+            log_x: false,
+            log_y: true,
+        },
+        &[
+            series("paper's iteration (full steps)", paper),
+            series("default (line search)", default),
+        ],
+    )
+}
+
+/// Fig. 6a, 6b and the errors against the reference.
+fn convergence_figures(
+    chapter: &Chapter,
+    rows: &[(usize, usize, (f64, f64, usize))],
+    exact: &Hertz,
+    (rp0, ra, _): (f64, f64, usize),
+) -> Result<()> {
+    let xs = [CONVERGENCE_ELEMENTS[0] as f64, REFERENCE.1 as f64];
+    let reference = format!("reference (p = {}, {}²)", REFERENCE.0, REFERENCE.1);
+    let horizontal =
+        |name: String, y: f64| Series::line(name, xs.iter().map(|&x| (x, y)).collect()).dashed();
+    for (file, title, label, value, hertz, refv) in [
+        (
+            "half_width.svg",
+            "Contact half-width against the mesh",
+            "a (mm)",
+            1,
+            exact.half_width * 1e3,
+            ra * 1e3,
+        ),
+        (
+            "peak_pressure.svg",
+            "Peak contact pressure against the mesh",
+            "p₀ (MPa)",
+            0,
+            exact.p0 * 1e-6,
+            rp0 * 1e-6,
+        ),
+    ] {
+        let mut series: Vec<Series> = LADDER_DEGREES
+            .iter()
+            .map(|&p| {
+                let pts = rows
+                    .iter()
+                    .filter(|r| r.0 == p)
+                    .map(|&(_, n, (p0, a, _))| {
+                        (n as f64, if value == 0 { p0 * 1e-6 } else { a * 1e3 })
+                    })
+                    .collect();
+                Series::line(format!("IGA p = {p}"), pts).with_markers()
+            })
+            .collect();
+        series.push(horizontal("Hertz".into(), hertz));
+        series.push(horizontal(reference.clone(), refv));
+        line_chart(
+            chapter.path(file),
+            &Axes {
+                title: title.into(),
+                x_label: "elements per direction".into(),
+                y_label: label.into(),
+                log_x: true,
+                log_y: false,
+            },
+            &series,
+        )?;
+    }
+    let mut series = Vec::new();
+    for p in LADDER_DEGREES {
+        let mine: Vec<_> = rows
+            .iter()
+            .filter(|r| r.0 == p && (p, r.1) != REFERENCE)
+            .collect();
+        let p0 = mine
+            .iter()
+            .map(|&&(_, n, (p0, _, _))| (n as f64, relative(p0, rp0).abs()))
+            .collect();
+        let a = mine
+            .iter()
+            .map(|&&(_, n, (_, a, _))| (n as f64, relative(a, ra).abs()))
+            .collect();
+        series.push(Series::line(format!("p₀, p = {p}"), p0).with_markers());
+        series.push(
+            Series::line(format!("a, p = {p}"), a)
+                .with_markers()
+                .dashed(),
+        );
+    }
+    line_chart(
+        chapter.path("errors.svg"),
+        &Axes {
+            title: format!("Error against the {reference}"),
+            x_label: "elements per direction".into(),
+            y_label: "relative error".into(),
+            log_x: true,
+            log_y: true,
+        },
+        &series,
+    )
+}
+// ANCHOR_END: figures
+
+/// The dense profiles as a table and a figure, up to 1.5 a.
+fn profile_outputs(
+    chapter: &Chapter,
+    profiles: &[(usize, PressureProfile)],
+    exact: &Hertz,
+) -> Result<()> {
+    let x_max = 1.5 * exact.half_width;
+    let mut t = Table::new(vec![
+        Column::plain("elements", "elements"),
+        Column::new("x", "x", Unit::Millimetre, Format::Fixed(3)),
+        Column::new("pressure", "pressure", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("hertz", "Hertz", Unit::Megapascal, Format::Fixed(4)),
+    ]);
+    let mut series = Vec::new();
+    for (n, profile) in profiles {
+        let samples: Vec<_> = profile.pair(0).iter().filter(|s| s.x[0] <= x_max).collect();
+        for s in &samples {
+            t.push(vec![
+                (*n).into(),
+                s.x[0].into(),
+                s.pressure().into(),
+                exact.pressure(s.x[0]).into(),
+            ])?;
+        }
+        let pts = samples
+            .iter()
+            .map(|s| (s.x[0] * 1e3, s.pressure() * 1e-6))
+            .collect();
+        series.push(Series::line(format!("IGA p = 2, {n}×{n}"), pts));
+    }
+    let ellipse = (0..=300)
+        .map(|i| {
+            let x = x_max * i as f64 / 300.0;
+            (x * 1e3, exact.pressure(x) * 1e-6)
+        })
+        .collect();
+    series.push(Series::line("Hertz p₀√(1 − x²/a²)", ellipse).dashed());
+    // CSV only: the Markdown would be thousands of rows
+    chapter.csv("pressure_profile", &t)?;
+    line_chart(
+        chapter.path("pressure_profile.svg"),
+        &Axes {
+            title: "Contact pressure along the floor".into(),
+            x_label: "x (mm)".into(),
+            y_label: "pressure (MPa)".into(),
+            log_x: false,
+            log_y: false,
+        },
+        &series,
+    )
+}

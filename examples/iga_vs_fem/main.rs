@@ -1,0 +1,235 @@
+//! IGA against FEM on the paper's coarse Hertz mesh: the program behind the
+//! chapter "IGA against FEM on the coarse mesh".
+//!
+//! The exact NURBS half disk with p = 2 is compared with isoparametric
+//! Lagrange Q1 and Q2 meshes of the same 8×8 elements (nodes on the exact
+//! circle), all with the same Nitsche contact and the same solver, beside
+//! the paper's single-thread figures. Output: `book/src/generated/iga_vs_fem/`.
+//!
+//! Run it with `cargo run --release --example iga_vs_fem`.
+
+#[path = "../common/hertz.rs"]
+mod setup;
+
+use iga_contact::error::{Error, Result};
+use iga_contact::post::{relative, PressureProfile};
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::plot::{line_chart, Axes, Series};
+use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::scene::RefineSpec;
+use iga_contact::solver::{solve, SolverKind, SolverOptions};
+use iga_contact::timing::median_time;
+
+// ANCHOR: paper
+/// The paper's 8×8 single-thread comparison: total time (s) and the largest
+/// contact-stress error (relative).
+const PAPER_IGA_SECONDS: f64 = 323.0;
+const PAPER_FEM_SECONDS: f64 = 213.0;
+const PAPER_IGA_ERROR: f64 = 0.0991;
+const PAPER_FEM_ERROR: f64 = 0.287;
+// ANCHOR_END: paper
+
+/// The paper's mesh, elements per direction.
+const ELEMENTS: usize = 8;
+/// Timing repeats per method (the median is kept).
+const REPEATS: usize = 11;
+
+// ANCHOR: methods
+/// The three discretisations compared: their label and refinement.
+fn methods() -> [(&'static str, RefineSpec); 3] {
+    let n = [ELEMENTS, ELEMENTS];
+    [
+        ("IGA p = 2", RefineSpec::iga(2, n)),
+        ("FEM Q1", RefineSpec::lagrange(1, n)),
+        ("FEM Q2", RefineSpec::lagrange(2, n)),
+    ]
+}
+// ANCHOR_END: methods
+
+/// One method, solved and measured.
+struct Row {
+    label: &'static str,
+    dofs: usize,
+    iterations: usize,
+    corrections: usize,
+    /// The solver that produced the solution: BFGS, or Newton if BFGS failed.
+    solver: String,
+    profile: PressureProfile,
+    seconds: f64,
+}
+
+// ANCHOR: run
+/// Builds and solves one method `REPEATS` times with the default BFGS and
+/// keeps the median time of assembly + solve. If BFGS does not converge,
+/// that is recorded and the method is measured with Newton instead.
+fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
+    let scene = setup::scene(refine)?;
+    let mut solver = "BFGS".to_string();
+    let mut timed = None;
+    for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        let opts = SolverOptions::with_kind(kind);
+        match median_time(REPEATS, || {
+            let problem = scene.build()?;
+            let solution = solve(&problem, &opts)?;
+            Ok((problem, solution))
+        }) {
+            Ok(t) => {
+                timed = Some(t);
+                break;
+            }
+            Err(Error::NotConverged { reason, .. }) => {
+                solver = format!("Newton (BFGS failed: {reason})")
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    let timed = timed.ok_or_else(|| Error::invalid(label, &solver, "no solver converged"))?;
+    let (problem, solution) = timed.value;
+    Ok(Row {
+        label,
+        dofs: problem.n(),
+        iterations: solution.history.len(),
+        corrections: solution.history.corrections(),
+        solver,
+        profile: PressureProfile::dense(&problem, &solution.full)?,
+        seconds: timed.seconds,
+    })
+}
+// ANCHOR_END: run
+
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("iga_vs_fem")?;
+    let exact = setup::analytic(&setup::scene(setup::iga(2, ELEMENTS))?)?;
+    let rows = methods()
+        .into_iter()
+        .map(|(label, refine)| measure(label, refine))
+        .collect::<Result<Vec<_>>>()?;
+
+    // ANCHOR: tables
+    let mut comparison = Table::new(vec![
+        Column::plain("method", "method"),
+        Column::plain("dofs", "DOFs"),
+        Column::plain("iterations", "iterations"),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new(
+            "p0_error",
+            "p₀ vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(2)),
+        Column::new(
+            "half_width_error",
+            "a vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::plain("corrections", "corrections").csv_only(),
+        Column::plain("solver", "solver").csv_only(),
+    ]);
+    let mut timings = Table::new(vec![
+        Column::plain("method", "method"),
+        Column::new(
+            "seconds",
+            "assembly + solve",
+            Unit::Millisecond,
+            Format::Fixed(2),
+        ),
+        Column::new("ratio", "IGA / method", Unit::None, Format::Times(2)),
+        Column::plain("repeats", "repeats").csv_only(),
+    ]);
+    let iga_seconds = rows[0].seconds;
+    for r in &rows {
+        let m = r.profile.measures(0);
+        comparison.push(vec![
+            r.label.into(),
+            r.dofs.into(),
+            r.iterations.into(),
+            m.p0.into(),
+            relative(m.p0, exact.p0).into(),
+            m.half_width.into(),
+            relative(m.half_width, exact.half_width).into(),
+            r.corrections.into(),
+            r.solver.clone().into(),
+        ])?;
+        timings.push(vec![
+            r.label.into(),
+            r.seconds.into(),
+            (iga_seconds / r.seconds).into(),
+            REPEATS.into(),
+        ])?;
+    }
+    chapter.table("comparison", &comparison)?;
+    chapter.table("timings", &timings)?;
+    // ANCHOR_END: tables
+
+    // ANCHOR: facts
+    let f = chapter.facts();
+    f.count("elements", ELEMENTS)?;
+    f.count("repeats", REPEATS)?;
+    f.number("paper_iga_error", PAPER_IGA_ERROR, Format::Percent(2))?;
+    f.number("paper_fem_error", PAPER_FEM_ERROR, Format::Percent(1))?;
+    f.number("paper_iga_seconds", PAPER_IGA_SECONDS, Format::Fixed(0))?;
+    f.number("paper_fem_seconds", PAPER_FEM_SECONDS, Format::Fixed(0))?;
+    f.number(
+        "paper_ratio",
+        PAPER_IGA_SECONDS / PAPER_FEM_SECONDS,
+        Format::Times(2),
+    )?;
+    for (key, r) in ["iga", "q1", "q2"].iter().zip(&rows) {
+        let m = r.profile.measures(0);
+        f.number(
+            &format!("{key}_p0_error"),
+            relative(m.p0, exact.p0).abs(),
+            Format::Percent(1),
+        )?;
+        f.number(
+            &format!("{key}_a_error"),
+            relative(m.half_width, exact.half_width).abs(),
+            Format::Percent(1),
+        )?;
+        f.count(&format!("{key}_dofs"), r.dofs)?;
+        f.number(
+            &format!("{key}_ratio"),
+            iga_seconds / r.seconds,
+            Format::Times(1),
+        )?;
+        f.text(&format!("{key}_solver"), r.solver.clone())?;
+    }
+    // ANCHOR_END: facts
+
+    // The three profiles against Hertz, in mm and MPa, up to 1.5 a.
+    let x_max = 1.5 * exact.half_width;
+    let mut series: Vec<Series> = rows
+        .iter()
+        .map(|r| {
+            let pts = r
+                .profile
+                .pair(0)
+                .iter()
+                .filter(|s| s.x[0] <= x_max)
+                .map(|s| (s.x[0] * 1e3, s.pressure() * 1e-6))
+                .collect();
+            Series::line(r.label, pts)
+        })
+        .collect();
+    let ellipse = (0..=300)
+        .map(|k| {
+            let x = x_max * k as f64 / 300.0;
+            (x * 1e3, exact.pressure(x) * 1e-6)
+        })
+        .collect();
+    series.push(Series::line("Hertz", ellipse).dashed());
+    line_chart(
+        chapter.path("pressure_profiles.svg"),
+        &Axes {
+            title: format!("Contact pressure, Hertz {ELEMENTS}×{ELEMENTS}"),
+            x_label: "x (mm)".into(),
+            y_label: "pressure (MPa)".into(),
+            log_x: false,
+            log_y: false,
+        },
+        &series,
+    )?;
+    chapter.finish()
+}

@@ -1,0 +1,189 @@
+//! Solvers compared: the program behind the chapter "Solvers: BFGS, its
+//! correction, and Newton". The paper's BFGS with its correction, the same
+//! BFGS without it, and semismooth Newton on the Hertz problem (IGA p = 2)
+//! as the mesh is refined. Output: `book/src/generated/solvers/`.
+//!
+//! Run it with `cargo run --release --example solvers`.
+
+#[path = "../common/hertz.rs"]
+mod setup;
+
+use iga_contact::error::{Error, Result};
+use iga_contact::post::PressureProfile;
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::plot::{line_chart, Axes, Series};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
+use iga_contact::solver::history::History;
+use iga_contact::solver::{solve, SolverKind, SolverOptions};
+use iga_contact::timing::median_time;
+
+/// Elements per direction.
+const MESHES: [usize; 4] = [8, 16, 32, 64];
+
+// ANCHOR: solvers
+/// The solvers compared, with the names the tables use.
+const SOLVERS: [(&str, SolverKind); 3] = [
+    ("BFGS + correction", SolverKind::Bfgs),
+    ("BFGS, no correction", SolverKind::BfgsNoCorrection),
+    ("Newton", SolverKind::Newton),
+];
+// ANCHOR_END: solvers
+
+/// One solve: its history, and what was measured if it converged.
+struct Outcome {
+    solver: &'static str,
+    elements: usize,
+    dofs: usize,
+    history: History,
+    /// `None` when converged, else the solver's reason.
+    failure: Option<String>,
+    factorisations: Option<usize>,
+    p0: Option<f64>,
+    seconds: f64,
+}
+
+// ANCHOR: run
+/// Runs one solver on Hertz p = 2 with `elements`²; non-convergence is a
+/// result and is recorded.
+fn outcome(solver: &'static str, kind: SolverKind, elements: usize) -> Result<Outcome> {
+    let scene = setup::scene(setup::iga(2, elements))?;
+    let timed = median_time(1, || {
+        let problem = scene.build()?;
+        let result = solve(&problem, &SolverOptions::with_kind(kind));
+        Ok((problem, result))
+    })?;
+    let (problem, result) = timed.value;
+    let mut o = Outcome {
+        solver,
+        elements,
+        dofs: problem.n(),
+        history: History::default(),
+        failure: None,
+        factorisations: None,
+        p0: None,
+        seconds: timed.seconds,
+    };
+    match result {
+        Ok(s) => {
+            o.p0 = Some(PressureProfile::dense(&problem, &s.full)?.measures(0).p0);
+            o.factorisations = Some(s.factorisations);
+            o.history = s.history;
+        }
+        Err(Error::NotConverged { reason, history }) => {
+            o.history = history;
+            o.failure = Some(reason);
+        }
+        Err(e) => o.failure = Some(e.to_string()),
+    }
+    Ok(o)
+}
+// ANCHOR_END: run
+
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("solvers")?;
+    let mut all = Vec::new();
+    for (name, kind) in SOLVERS {
+        for n in MESHES {
+            all.push(outcome(name, kind, n)?);
+        }
+    }
+
+    // ANCHOR: tables
+    let mut table = Table::new(vec![
+        Column::plain("solver", "solver"),
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("dofs", "DOFs"),
+        Column::plain("converged", "converged"),
+        Column::plain("iterations", "iterations"),
+        Column::plain("corrections", "corrections"),
+        Column::plain("factorisations", "factorisations"),
+        Column::new(
+            "final_relative_residual",
+            "final ‖R‖/‖R₀‖",
+            Unit::None,
+            Format::Sci(1),
+        ),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("seconds", "seconds", Unit::Second, Format::Fixed(3)).csv_only(),
+        Column::plain("failure", "failure").csv_only(),
+    ]);
+    for o in &all {
+        table.push(vec![
+            o.solver.into(),
+            o.elements.into(),
+            o.dofs.into(),
+            (if o.failure.is_none() { "yes" } else { "**no**" }).into(),
+            o.history.len().into(),
+            o.history.corrections().into(),
+            o.factorisations.into(),
+            o.history.last_relative_residual().into(),
+            o.p0.into(),
+            o.seconds.into(),
+            o.failure.clone().map_or(Cell::Empty, Cell::Text),
+        ])?;
+    }
+    chapter.table("solvers", &table)?;
+    // ANCHOR_END: tables
+
+    let series: Vec<Series> = SOLVERS
+        .iter()
+        .map(|&(name, _)| {
+            let pts = all
+                .iter()
+                .filter(|o| o.solver == name && o.failure.is_none())
+                .map(|o| (o.elements as f64, o.history.len() as f64))
+                .collect();
+            Series::line(name, pts).with_markers()
+        })
+        .collect();
+    line_chart(
+        chapter.path("iterations.svg"),
+        &Axes {
+            title: "Iterations to convergence (failed runs omitted, see the table)".into(),
+            x_label: "elements per direction".into(),
+            y_label: "iterations".into(),
+            log_x: true,
+            log_y: false,
+        },
+        &series,
+    )?;
+
+    // ANCHOR: facts
+    let f = chapter.facts();
+    let its = |name: &str, n: usize| {
+        all.iter()
+            .find(|o| o.solver == name && o.elements == n)
+            .map_or(0, |o| o.history.len())
+    };
+    let (coarse, fine) = (MESHES[0], MESHES[MESHES.len() - 1]);
+    for (key, (name, _)) in ["bfgs", "bfgs_no_correction", "newton"].iter().zip(SOLVERS) {
+        f.count(&format!("{key}_coarse"), its(name, coarse))?;
+        f.count(&format!("{key}_fine"), its(name, fine))?;
+    }
+    let ratio = |n| its(SOLVERS[1].0, n) as f64 / its(SOLVERS[0].0, n) as f64;
+    f.number(
+        "no_correction_ratio_coarse",
+        ratio(coarse),
+        Format::Times(1),
+    )?;
+    f.number("no_correction_ratio_fine", ratio(fine), Format::Times(1))?;
+    let newton: Vec<usize> = all
+        .iter()
+        .filter(|o| o.solver == "Newton")
+        .map(|o| o.history.len())
+        .collect();
+    f.text(
+        "newton_range",
+        format!(
+            "{}–{}",
+            newton.iter().min().unwrap_or(&0),
+            newton.iter().max().unwrap_or(&0)
+        ),
+    )?;
+    f.count(
+        "failures",
+        all.iter().filter(|o| o.failure.is_some()).count(),
+    )?;
+    // ANCHOR_END: facts
+    chapter.finish()
+}

@@ -1,0 +1,419 @@
+//! Post-processing: what the book, the chapter programs and the scene
+//! outputs measure on a converged solution — the contact pressure along the
+//! slave boundary, its peak and the contact half-width, the contact and
+//! load resultants, and errors against a reference solution.
+//!
+//! Each quantity has exactly one estimator, here, so every chapter quotes
+//! the same number for the same solution. Everything about the contact
+//! pressure is built on the Nitsche bracket P = σ_n + γ g_n and the
+//! projection of Eq. (10): the pressure the master exerts is −\[P\]₋.
+
+pub mod hertz;
+
+use crate::assembly::load_vector;
+use crate::contact::nitsche::negative_part;
+use crate::contact::{contact_points, ContactPoint, Integration};
+use crate::dofs::DofMap;
+use crate::error::{Error, Result};
+use crate::linsolve::mul;
+use crate::problem::Problem;
+
+/// Sample points per slave element of the dense pressure profile: the
+/// points of a 20-point Gauss rule, so element ends (where the pressure
+/// may have a kink) are never sampled, and no point is sampled twice.
+pub const PROFILE_SAMPLES_PER_ELEMENT: usize = 20;
+
+/// One point of a [`PressureProfile`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProfileSample {
+    /// Index of the contact pair.
+    pub pair: usize,
+    /// Parameter of the point on the slave side.
+    pub t: f64,
+    /// Reference position x¹ on the slave.
+    pub x: [f64; 2],
+    /// n¹, the slave normal (pointing towards the master).
+    pub normal: [f64; 2],
+    /// The Nitsche bracket P = σ_n + γ g_n; negative where the bodies press.
+    pub bracket: f64,
+    /// Quadrature weight of the sampling rule, arc length included.
+    pub weight: f64,
+}
+
+impl ProfileSample {
+    /// The contact pressure −\[P\]₋ ≥ 0 of Eq. (9)–(10).
+    pub fn pressure(&self) -> f64 {
+        -negative_part(self.bracket)
+    }
+}
+
+/// The Nitsche bracket sampled densely along every slave side.
+///
+/// The samples are contact points built by [`contact_points`] exactly as the
+/// solver's (same normal, gap, penalty and σ_n functional); only the rule
+/// differs: Gauss points per slave element, never cut at master knots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PressureProfile {
+    /// Sorted by pair, then by slave parameter.
+    samples: Vec<ProfileSample>,
+    /// The end points of every pair's slave side.
+    side_ends: Vec<[[f64; 2]; 2]>,
+}
+
+impl PressureProfile {
+    /// Samples the bracket of `full` (all DOFs) at `per_element` Gauss
+    /// points of every slave element (`per_element` in 1..=30).
+    pub fn sample(problem: &Problem, full: &[f64], per_element: usize) -> Result<Self> {
+        if full.len() != problem.map.n_total() {
+            return Err(Error::invalid(
+                "displacement",
+                format!("{} values", full.len()),
+                format!("the DOF map has {} DOFs", problem.map.n_total()),
+            ));
+        }
+        let pairs: Vec<_> = problem
+            .pairs
+            .iter()
+            .map(|p| {
+                let mut p = p.clone();
+                p.nitsche.integration = Integration::Gauss;
+                p.nitsche.gauss_points = Some(per_element);
+                p
+            })
+            .collect();
+        let points = contact_points(&problem.bodies, &problem.map, &pairs)?;
+        Ok(Self::from_points(problem, &points, full))
+    }
+
+    /// The profile at the given contact points of `problem` (for instance
+    /// the solver's own).
+    pub fn from_points(problem: &Problem, points: &[ContactPoint], full: &[f64]) -> Self {
+        let side_ends = problem
+            .pairs
+            .iter()
+            .map(|p| {
+                let c = problem.bodies[p.slave].space.patch.side_curve(p.slave_side);
+                [c.point(c.knots.first()), c.point(c.knots.last())]
+            })
+            .collect();
+        let mut samples: Vec<ProfileSample> = points
+            .iter()
+            .map(|cp| ProfileSample {
+                pair: cp.pair,
+                t: cp.t,
+                x: cp.x,
+                normal: cp.normal,
+                bracket: cp.p(full),
+                weight: cp.weight,
+            })
+            .collect();
+        samples.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.t.total_cmp(&b.t)));
+        Self { samples, side_ends }
+    }
+
+    /// The dense profile: [`PROFILE_SAMPLES_PER_ELEMENT`] points per slave
+    /// element, or, where the map of a slave element is not invertible at
+    /// some of them, the largest of 16, 12, 10, 8, 6, 4 points that works.
+    /// (The isoparametric Q2 interpolant of the disk folds slightly at the
+    /// far corner of its contact side, away from the contact zone.)
+    pub fn dense(problem: &Problem, full: &[f64]) -> Result<Self> {
+        let mut last = None;
+        for n in [PROFILE_SAMPLES_PER_ELEMENT, 16, 12, 10, 8, 6, 4] {
+            match Self::sample(problem, full, n) {
+                Ok(p) => return Ok(p),
+                Err(e @ Error::Geometry(_)) => last = Some(e),
+                Err(e) => return Err(e),
+            }
+        }
+        Err(last.expect("tried at least once"))
+    }
+
+    pub fn samples(&self) -> &[ProfileSample] {
+        &self.samples
+    }
+
+    /// The samples of contact pair `pair`, in order along the slave side.
+    pub fn pair(&self, pair: usize) -> &[ProfileSample] {
+        let lo = self.samples.partition_point(|s| s.pair < pair);
+        let hi = self.samples.partition_point(|s| s.pair <= pair);
+        &self.samples[lo..hi]
+    }
+
+    /// Peak pressure p₀ and half-width a of pair `pair`
+    /// (see [`ContactMeasures::of`]).
+    pub fn measures(&self, pair: usize) -> ContactMeasures {
+        ContactMeasures::of(self.pair(pair), self.side_ends[pair])
+    }
+}
+
+/// The peak pressure and the contact half-width of one contact pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactMeasures {
+    /// p₀: the largest sampled pressure −\[P\]₋.
+    pub p0: f64,
+    /// Where p₀ is attained (reference position on the slave).
+    pub peak_at: [f64; 2],
+    /// a: half the length of the contact zone, measured along the contact
+    /// tangent at the peak — or its whole length when the zone reaches an
+    /// end of the slave side (a symmetric half model).
+    pub half_width: f64,
+}
+
+impl ContactMeasures {
+    /// Measures a profile of one pair: `samples` in order along the slave
+    /// side, whose end points are `side_ends`.
+    ///
+    /// The contact zone is where the bracket P is negative. Its ends are the
+    /// sign changes of P, located by linear interpolation of the *signed*
+    /// bracket between neighbouring samples: the clipped pressure cannot be
+    /// interpolated, since it is identically 0 beyond the edge, but P is
+    /// smooth there. Positions are measured along the tangent t = n¹⊥ at
+    /// the peak (the common tangent of Hertz's theory). The half-width is
+    /// half the zone's extent along t; if the zone runs up to an end of the
+    /// slave side, that end is taken as the zone's centre — the model is a
+    /// symmetric half, cut through the contact zone, as the paper's Hertz
+    /// disk — and the half-width is the extent itself. With no loaded sample
+    /// both measures are 0.
+    pub fn of(samples: &[ProfileSample], side_ends: [[f64; 2]; 2]) -> Self {
+        let none = Self {
+            p0: 0.0,
+            peak_at: [0.0; 2],
+            half_width: 0.0,
+        };
+        let Some(peak) = samples
+            .iter()
+            .filter(|s| s.bracket < 0.0)
+            .max_by(|a, b| a.pressure().total_cmp(&b.pressure()))
+        else {
+            return none;
+        };
+        let tangent = [-peak.normal[1], peak.normal[0]];
+        let along = |x: [f64; 2]| (x[0] - peak.x[0]) * tangent[0] + (x[1] - peak.x[1]) * tangent[1];
+        let mut ends = Vec::new();
+        for w in samples.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            if (a.bracket < 0.0) != (b.bracket < 0.0) {
+                let s = a.bracket / (a.bracket - b.bracket);
+                ends.push(along([
+                    a.x[0] + s * (b.x[0] - a.x[0]),
+                    a.x[1] + s * (b.x[1] - a.x[1]),
+                ]));
+            }
+        }
+        let side_ends: Vec<f64> = [
+            (samples.first(), side_ends[0]),
+            (samples.last(), side_ends[1]),
+        ]
+        .into_iter()
+        .filter(|(s, _)| s.is_some_and(|s| s.bracket < 0.0))
+        .map(|(_, x)| along(x))
+        .collect();
+        let all = ends.iter().chain(&side_ends);
+        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &s| {
+            (l.min(s), h.max(s))
+        });
+        let half_width = match side_ends.as_slice() {
+            // cut by a symmetry line: the side end is the centre
+            [centre] => ends.iter().map(|s| (s - centre).abs()).fold(0.0, f64::max),
+            _ => 0.5 * (hi - lo),
+        };
+        Self {
+            p0: peak.pressure(),
+            peak_at: peak.x,
+            half_width,
+        }
+    }
+}
+
+/// The force the masters exert on the slaves, Σ_q w \[P\]₋ n¹ over the
+/// contact points of `problem` (the solver's own quadrature, so that it
+/// balances the load exactly at convergence), per pair.
+pub fn contact_resultants(problem: &Problem, full: &[f64]) -> Vec<[f64; 2]> {
+    let mut f = vec![[0.0; 2]; problem.pairs.len()];
+    for cp in &problem.points {
+        let pm = negative_part(cp.p(full));
+        f[cp.pair][0] += cp.weight * pm * cp.normal[0];
+        f[cp.pair][1] += cp.weight * pm * cp.normal[1];
+    }
+    f
+}
+
+/// [`contact_resultants`] summed over the pairs.
+pub fn contact_resultant(problem: &Problem, full: &[f64]) -> [f64; 2] {
+    contact_resultants(problem, full)
+        .iter()
+        .fold([0.0; 2], |a, f| [a[0] + f[0], a[1] + f[1]])
+}
+
+/// The resultant of the applied loads, ∫ b dΩ + ∫ t dΓ: the load vector with
+/// no DOF fixed, summed per component (the basis is a partition of unity).
+pub fn applied_resultant(problem: &Problem) -> Result<[f64; 2]> {
+    let free = DofMap::builder(&problem.bodies).build();
+    let f = load_vector(&problem.bodies, &free, &problem.loads)?;
+    let mut sum = [0.0; 2];
+    for (g, v) in f.iter().enumerate() {
+        sum[g % 2] += v;
+    }
+    Ok(sum)
+}
+
+/// Strain energy ½ uᵀKu of the free displacement `u` (exact when every
+/// prescribed displacement is zero, as in the paper's set-ups).
+pub fn strain_energy(problem: &Problem, u: &[f64]) -> f64 {
+    0.5 * mul(&problem.k, u)
+        .iter()
+        .zip(u)
+        .map(|(a, b)| a * b)
+        .sum::<f64>()
+}
+
+/// Signed relative difference (value − target)/target.
+pub fn relative(value: f64, target: f64) -> f64 {
+    (value - target) / target
+}
+
+/// Errors of one solution against a reference solution of the same problem.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Errors {
+    /// |p₀ − p₀,ref| / p₀,ref.
+    pub p0: f64,
+    /// |a − a_ref| / a_ref.
+    pub half_width: f64,
+    /// The relative L² distance of the pressure profiles over
+    /// x ∈ \[0, 1.2 a_ref\] (see [`Reference::profile_error`]).
+    pub pressure_l2: f64,
+    /// √(|E − E_ref| / E_ref) with E the strain energy: for a conforming
+    /// discretisation of a linear problem this is the relative energy norm
+    /// of the error; here it is a proxy of it.
+    pub energy: f64,
+}
+
+/// What a reference (fine-mesh) solution provides for measuring errors:
+/// its dense profile of the first contact pair, measures and strain energy.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    pub profile: PressureProfile,
+    pub measures: ContactMeasures,
+    pub energy: f64,
+}
+
+/// The part of the contact zone over which pressure profiles are compared,
+/// in units of the reference half-width.
+pub const PROFILE_ERROR_EXTENT: f64 = 1.2;
+
+impl Reference {
+    pub fn new(problem: &Problem, u: &[f64], full: &[f64]) -> Result<Self> {
+        let profile = PressureProfile::dense(problem, full)?;
+        Ok(Self {
+            measures: profile.measures(0),
+            profile,
+            energy: strain_energy(problem, u),
+        })
+    }
+
+    /// The relative L² distance √(Σ w (p − p_ref)²) / √(Σ w p_ref²) of a
+    /// profile of pair 0 to the reference's, over the samples with
+    /// x ≤ [`PROFILE_ERROR_EXTENT`]·a_ref, with the profile's own weights
+    /// and the reference interpolated linearly in x.
+    pub fn profile_error(&self, profile: &PressureProfile) -> f64 {
+        let reference = self.profile.pair(0);
+        let x_max = PROFILE_ERROR_EXTENT * self.measures.half_width;
+        let (mut num, mut den) = (0.0, 0.0);
+        for s in profile.pair(0).iter().filter(|s| s.x[0] <= x_max) {
+            let r = interpolate_pressure(reference, s.x[0]);
+            num += s.weight * (s.pressure() - r).powi(2);
+            den += s.weight * r * r;
+        }
+        (num / den).sqrt()
+    }
+
+    /// Every error of a solution (`u` free DOFs, `full` all DOFs).
+    pub fn errors(&self, problem: &Problem, u: &[f64], full: &[f64]) -> Result<Errors> {
+        let profile = PressureProfile::dense(problem, full)?;
+        let m = profile.measures(0);
+        let energy = strain_energy(problem, u);
+        Ok(Errors {
+            p0: relative(m.p0, self.measures.p0).abs(),
+            half_width: relative(m.half_width, self.measures.half_width).abs(),
+            pressure_l2: self.profile_error(&profile),
+            energy: relative(energy, self.energy).abs().sqrt(),
+        })
+    }
+}
+
+/// The pressure of samples ordered by x, interpolated linearly at `x`
+/// (constant beyond the ends).
+fn interpolate_pressure(samples: &[ProfileSample], x: f64) -> f64 {
+    let i = samples.partition_point(|s| s.x[0] < x);
+    match (samples.get(i.wrapping_sub(1)), samples.get(i)) {
+        (Some(a), Some(b)) if b.x[0] > a.x[0] => {
+            a.pressure() + (b.pressure() - a.pressure()) * (x - a.x[0]) / (b.x[0] - a.x[0])
+        }
+        (_, Some(b)) => b.pressure(),
+        (Some(a), None) => a.pressure(),
+        (None, None) => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(x: f64, bracket: f64) -> ProfileSample {
+        ProfileSample {
+            pair: 0,
+            t: x,
+            x: [x, 0.0],
+            normal: [0.0, -1.0],
+            bracket,
+            weight: 1.0,
+        }
+    }
+
+    /// On a sampled Hertz ellipse P(x) = −p₀√(1 − x²/a²) continued by a
+    /// positive gap beyond a, the estimators find p₀ at the centre and a
+    /// to second order in the sample spacing.
+    #[test]
+    fn measures_of_a_sampled_hertz_profile() {
+        let (p0, a) = (2.0, 0.45);
+        for (n, tol) in [(40, 2e-3), (400, 2e-5)] {
+            let samples: Vec<_> = (0..n)
+                .map(|i| {
+                    let x = (i as f64 + 0.5) / n as f64;
+                    // smooth across the edge: −p₀(1 − x²/a²) has the same root
+                    sample(x, -p0 * (1.0 - x * x / (a * a)))
+                })
+                .collect();
+            let m = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
+            assert!((m.p0 - p0).abs() <= 1e-3 * p0, "{m:?}");
+            assert!((m.half_width - a).abs() <= tol, "n = {n}: {m:?}");
+        }
+        // a symmetric whole zone [−a, a] gives the same a as its half
+        let samples: Vec<_> = (0..800)
+            .map(|i| {
+                let x = -1.0 + (i as f64 + 0.5) / 400.0;
+                sample(x, -p0 * (1.0 - x * x / (a * a)))
+            })
+            .collect();
+        let m = ContactMeasures::of(&samples, [[-1.0, 0.0], [1.0, 0.0]]);
+        assert!((m.half_width - a).abs() <= 2e-5, "{m:?}");
+        assert!(m.peak_at[0].abs() <= 2e-3);
+    }
+
+    #[test]
+    fn no_contact_measures_zero() {
+        let samples: Vec<_> = (0..10).map(|i| sample(i as f64, 1.0)).collect();
+        let ends = [[0.0; 2], [1.0, 0.0]];
+        let m = ContactMeasures::of(&samples, ends);
+        assert_eq!((m.p0, m.half_width), (0.0, 0.0));
+        assert_eq!(ContactMeasures::of(&[], ends).p0, 0.0);
+    }
+
+    #[test]
+    fn interpolation_is_linear_and_constant_outside() {
+        let s = [sample(0.0, -1.0), sample(1.0, -3.0)];
+        assert_eq!(interpolate_pressure(&s, 0.25), 1.5);
+        assert_eq!(interpolate_pressure(&s, -1.0), 1.0);
+        assert_eq!(interpolate_pressure(&s, 2.0), 3.0);
+    }
+}

@@ -1,0 +1,179 @@
+//! The generated folder of one book chapter, `book/src/generated/<name>/`:
+//! what a chapter program writes — tables (CSV + Markdown), texts, figures
+//! and the facts its prose quotes.
+
+use super::atomic::write_text;
+use super::facts::{self, Facts};
+use super::table::Table;
+use crate::error::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// The book's generated folders, in this crate's source tree.
+pub fn generated_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated")
+}
+
+/// The scene files shipped in `data/scenes/`.
+pub fn scene_path(file: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenes")
+        .join(file)
+}
+
+/// A chapter program: the Cargo example that regenerates the generated
+/// folder `chapter` of the book.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Program {
+    pub example: &'static str,
+    pub chapter: &'static str,
+}
+
+/// Every chapter program, in the order of the book.
+pub const PROGRAMS: [Program; 8] = [
+    Program {
+        example: "lame",
+        chapter: "lame",
+    },
+    Program {
+        example: "kernel_factorisation",
+        chapter: "kernel",
+    },
+    Program {
+        example: "taylor",
+        chapter: "taylor",
+    },
+    Program {
+        example: "hertz",
+        chapter: "hertz",
+    },
+    Program {
+        example: "iga_vs_fem",
+        chapter: "iga_vs_fem",
+    },
+    Program {
+        example: "error_vs_time",
+        chapter: "error_vs_time",
+    },
+    Program {
+        example: "solvers",
+        chapter: "solvers",
+    },
+    Program {
+        example: "stability",
+        chapter: "stability",
+    },
+];
+
+/// Where a chapter program writes, and the facts it collects on the way.
+///
+/// A chapter's outputs form one set: every file is written into a staging
+/// folder beside the target, and [`Chapter::finish`] swaps the staging
+/// folder in for the old one. Until then the earlier results stay as they
+/// were; a program that fails leaves them untouched, and files that a
+/// program no longer writes do not linger.
+pub struct Chapter {
+    dir: PathBuf,
+    staging: PathBuf,
+    facts: Facts,
+}
+
+impl Chapter {
+    /// The chapter `name`, written to `book/src/generated/<name>`, or to the
+    /// directory given on the command line as `--out DIR`.
+    pub fn from_args(name: &str) -> Result<Self> {
+        let mut args = std::env::args().skip(1);
+        let mut dir = generated_root().join(name);
+        while let Some(a) = args.next() {
+            match a.as_str() {
+                "--out" => {
+                    dir = args
+                        .next()
+                        .map(PathBuf::from)
+                        .ok_or_else(|| Error::invalid("--out", "", "needs a directory"))?;
+                }
+                other => {
+                    return Err(Error::invalid(
+                        "argument",
+                        other,
+                        "the only option is `--out DIR`",
+                    ))
+                }
+            }
+        }
+        Self::at(dir)
+    }
+
+    /// A chapter written to `dir`; fails early if the staging folder
+    /// beside it cannot be created.
+    pub fn at(dir: impl Into<PathBuf>) -> Result<Self> {
+        let dir = dir.into();
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .ok_or_else(|| Error::invalid("--out", dir.display(), "needs a folder name"))?;
+        let staging = dir.with_file_name(format!(".{name}.staging.{}", std::process::id()));
+        let io = |p: &Path| {
+            let p = p.display().to_string();
+            move |source| Error::Io { path: p, source }
+        };
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging).map_err(io(&staging))?;
+        }
+        std::fs::create_dir_all(&staging).map_err(io(&staging))?;
+        Ok(Self {
+            dir,
+            staging,
+            facts: Facts::new(),
+        })
+    }
+
+    /// The folder the chapter's files end up in.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The path an output file is written to now (in the staging folder),
+    /// for figures drawn straight to disk.
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.staging.join(file)
+    }
+
+    /// Writes `<stem>.csv` and `<stem>.md`.
+    pub fn table(&self, stem: &str, table: &Table) -> Result<()> {
+        self.csv(stem, table)?;
+        write_text(self.path(&format!("{stem}.md")), &table.to_markdown())
+    }
+
+    /// Writes only `<stem>.csv` (for tables too long to read in the book).
+    pub fn csv(&self, stem: &str, table: &Table) -> Result<()> {
+        write_text(self.path(&format!("{stem}.csv")), &table.to_csv())
+    }
+
+    /// Writes a text file.
+    pub fn text(&self, file: &str, text: &str) -> Result<()> {
+        write_text(self.path(file), text)
+    }
+
+    /// The facts the chapter's prose quotes.
+    pub fn facts(&mut self) -> &mut Facts {
+        &mut self.facts
+    }
+
+    /// Writes the facts file and swaps the complete set of files in.
+    pub fn finish(self) -> Result<()> {
+        write_text(self.path(facts::FILE), &self.facts.to_text())?;
+        let io = |p: &Path| {
+            let p = p.display().to_string();
+            move |source| Error::Io { path: p, source }
+        };
+        let old = self.staging.with_extension("old");
+        if self.dir.exists() {
+            std::fs::rename(&self.dir, &old).map_err(io(&self.dir))?;
+        }
+        std::fs::rename(&self.staging, &self.dir).map_err(io(&self.dir))?;
+        if old.exists() {
+            std::fs::remove_dir_all(&old).map_err(io(&old))?;
+        }
+        Ok(())
+    }
+}

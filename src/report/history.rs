@@ -1,0 +1,33 @@
+//! A solver's iteration history as a [`Table`].
+
+use super::table::{Cell, Column, Format, Table, Unit};
+use crate::error::Result;
+use crate::solver::history::History;
+
+/// One row per iteration: residual, relative residual, update, the largest
+/// displacement, active contact points and events. `length` is the unit of
+/// displacements (metres in the book's benchmarks).
+pub fn history_table(h: &History, length: Unit) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::plain("iteration", "it."),
+        Column::new("residual", "‖R‖", Unit::None, Format::Sci(2)),
+        Column::new("relative_residual", "‖R‖/‖R₀‖", Unit::None, Format::Sci(2)),
+        Column::new("update", "‖Δu‖", length, Format::Sci(2)),
+        Column::new("max_displacement", "max u", length, Format::Sci(4)),
+        Column::plain("active_points", "active"),
+        Column::plain("events", "events"),
+    ]);
+    for r in &h.rows {
+        let events: Vec<String> = r.events.iter().map(|e| e.to_string()).collect();
+        t.push(vec![
+            r.iteration.into(),
+            r.residual.into(),
+            r.relative_residual.into(),
+            r.update.into(),
+            r.max_displacement.into(),
+            r.active_points.into(),
+            Cell::Text(events.join("; ")),
+        ])?;
+    }
+    Ok(t)
+}
