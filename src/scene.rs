@@ -746,7 +746,21 @@ impl RefineSpec {
     }
 }
 
+/// The path of a scene file shipped in `data/scenes/` (in this crate's
+/// source tree).
+pub fn shipped_path(file: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenes")
+        .join(file)
+}
+
 impl Scene {
+    /// A scene file shipped in `data/scenes/`: the paper's set-ups are
+    /// `taylor.toml` and `hertz.toml`.
+    pub fn shipped(file: &str) -> Result<Scene> {
+        Scene::load(shipped_path(file))
+    }
+
     /// The body named `name`, to change it before building.
     pub fn body_mut(&mut self, name: &str) -> Result<&mut BodySpec> {
         let known: Vec<String> = self.bodies.iter().map(|b| b.name.clone()).collect();
@@ -765,6 +779,18 @@ impl Scene {
     /// The Nitsche parameters of every contact pair, to change them before building.
     pub fn nitsche_mut(&mut self) -> impl Iterator<Item = &mut Nitsche> {
         self.contacts.iter_mut().map(|c| &mut c.nitsche)
+    }
+
+    /// The scene with body `name` discretised by `refine`.
+    pub fn refined(mut self, name: &str, refine: RefineSpec) -> Result<Self> {
+        self.body_mut(name)?.refine = Some(refine);
+        Ok(self)
+    }
+
+    /// The scene with `set` applied to the Nitsche parameters of every pair.
+    pub fn with_nitsche(mut self, set: impl FnMut(&mut Nitsche)) -> Self {
+        self.nitsche_mut().for_each(set);
+        self
     }
 
     /// Index of each body by name.

@@ -8,14 +8,13 @@
 use iga_contact::assembly::Load;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::{Cylinder, Hertz};
-use iga_contact::report::chapter::scene_path;
 use iga_contact::scene::{GeometrySpec, OutputSpec, RefineSpec, Scene};
 use std::f64::consts::PI;
 
 /// `data/scenes/hertz.toml` discretised by `refine` (IGA or FEM, elements
 /// per direction), with no outputs of its own.
 pub fn scene(refine: RefineSpec) -> Result<Scene> {
-    let mut s = Scene::load(scene_path("hertz.toml"))?;
+    let mut s = Scene::shipped("hertz.toml")?;
     s.body_mut("disk")?.refine = Some(refine);
     s.output = OutputSpec::default();
     Ok(s)

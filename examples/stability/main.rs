@@ -15,7 +15,7 @@ use iga_contact::contact::{Integration, Theta};
 use iga_contact::error::{Error, Result};
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::{scene_path, Chapter};
+use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::solver::history::{Event, History};
@@ -54,7 +54,7 @@ fn hertz(p: usize, n: usize) -> Result<Scene> {
 }
 
 fn taylor() -> Result<Scene> {
-    Scene::load(scene_path("taylor.toml"))
+    Scene::shipped("taylor.toml")
 }
 
 /// Every Nitsche parameter group of a scene, set by `f`.

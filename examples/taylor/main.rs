@@ -17,7 +17,7 @@ use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
 use iga_contact::error::Result;
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::{scene_path, Chapter};
+use iga_contact::report::chapter::Chapter;
 use iga_contact::report::drawing::{control_net, element_lines, field_cells, labelled, Placement};
 use iga_contact::report::history::history_table;
 use iga_contact::report::plot::{field_figure, geometry_figure, LineKind, Polyline, BLACK_INDEX};
@@ -65,7 +65,7 @@ fn rule_name(rule: Integration) -> &'static str {
 // ANCHOR: solve
 /// Solves the scene with contact integration `rule` and measures it.
 fn solve_case(rule: Integration) -> Result<Case> {
-    let mut scene = Scene::load(scene_path("taylor.toml"))?;
+    let mut scene = Scene::shipped("taylor.toml")?;
     for nitsche in scene.nitsche_mut() {
         nitsche.integration = rule;
     }

@@ -13,13 +13,6 @@ pub fn generated_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated")
 }
 
-/// The scene files shipped in `data/scenes/`.
-pub fn scene_path(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(file)
-}
-
 /// A chapter program: the Cargo example that regenerates the generated
 /// folder `chapter` of the book.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,14 +4,13 @@
 
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::scene_path;
 use iga_contact::scene::{RefineSpec, Scene};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 use std::path::PathBuf;
 
 /// A shipped scene file, loaded.
 pub fn scene(file: &str) -> Scene {
-    Scene::load(scene_path(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+    Scene::shipped(file).unwrap_or_else(|e| panic!("{file}: {e}"))
 }
 
 /// The Hertz scene with p = `degree` on `elements`² and the given θ.
