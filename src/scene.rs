@@ -1094,7 +1094,7 @@ impl Scene {
         if o.iterations {
             texts.push((
                 files::ITERATIONS,
-                history_table(history, Unit::None)?.to_csv(),
+                history_table(history, Unit::None, Unit::None)?.to_csv(),
             ));
         }
         if let (true, Some(profile)) = (o.pressure_profile, &profile) {

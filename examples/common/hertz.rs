@@ -11,6 +11,7 @@ use iga_contact::post::hertz::{Cylinder, Hertz};
 use iga_contact::scene::{GeometrySpec, OutputSpec, RefineSpec, Scene};
 use std::f64::consts::PI;
 
+// ANCHOR: setup
 /// `data/scenes/hertz.toml` discretised by `refine` (IGA or FEM, elements
 /// per direction), with no outputs of its own.
 pub fn scene(refine: RefineSpec) -> Result<Scene> {
@@ -54,3 +55,4 @@ pub fn analytic(scene: &Scene) -> Result<Hertz> {
         weight_density * PI * radius * radius,
     ))
 }
+// ANCHOR_END: setup

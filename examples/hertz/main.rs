@@ -166,7 +166,10 @@ fn main() -> Result<()> {
     let paper = find("bfgs_paper", 2, 8).ok_or_else(|| missing("bfgs_paper 8²"))?;
     let default = find("bfgs", 2, 8).ok_or_else(|| missing("bfgs 8²"))?;
     for (name, r) in [("iterations_8x8_paper", paper), ("iterations_8x8", default)] {
-        chapter.table(name, &history_table(&r.solution.history, Unit::Metre)?)?;
+        chapter.table(
+            name,
+            &history_table(&r.solution.history, Unit::NewtonPerMetre, Unit::Millimetre)?,
+        )?;
     }
     residual_figure(&chapter, paper, default)?;
 
@@ -332,6 +335,36 @@ fn main() -> Result<()> {
         }
     }
     f.count("failures", failures.len())?;
+    for &(p, n, (p0, a, _)) in &rows {
+        let key = format!("p{p}_{n}");
+        f.number(
+            &format!("{key}_p0_vs_hertz"),
+            relative(p0, exact.p0),
+            Format::SignedPercent(2),
+        )?;
+        f.number(
+            &format!("{key}_a_vs_hertz"),
+            relative(a, exact.half_width),
+            Format::SignedPercent(2),
+        )?;
+        f.number(
+            &format!("{key}_p0_vs_reference"),
+            relative(p0, rp0),
+            Format::SignedPercent(2),
+        )?;
+        f.number(
+            &format!("{key}_a_vs_reference"),
+            relative(a, ra),
+            Format::SignedPercent(2),
+        )?;
+    }
+    let spacing = default
+        .problem
+        .points
+        .windows(2)
+        .map(|w| (w[1].x[0] - w[0].x[0]).abs())
+        .fold(0.0, f64::max);
+    f.number("solver_point_spacing_mm", spacing * 1e3, Format::Fixed(0))?;
     // ANCHOR_END: facts
     chapter.finish()
 }

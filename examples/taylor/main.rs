@@ -188,7 +188,7 @@ fn main() -> Result<()> {
     }
     chapter.table("iterations_paper", &paper)?;
     for c in &cases {
-        let t = history_table(&c.solution.history, Unit::Metre)?;
+        let t = history_table(&c.solution.history, Unit::NewtonPerMetre, Unit::Metre)?;
         chapter.table(&format!("iterations_{}", rule_name(c.rule)), &t)?;
     }
     // ANCHOR_END: tables

@@ -5,12 +5,13 @@ use crate::error::Result;
 use crate::solver::history::History;
 
 /// One row per iteration: residual, relative residual, update, the largest
-/// displacement, active contact points and events. `length` is the unit of
-/// displacements (metres in the book's benchmarks).
-pub fn history_table(h: &History, length: Unit) -> Result<Table> {
+/// displacement, active contact points and events, with residuals shown in
+/// the unit `force` and displacements in `length` (the book's benchmarks:
+/// N/m and m or mm; a scene's own units: [`Unit::None`]).
+pub fn history_table(h: &History, force: Unit, length: Unit) -> Result<Table> {
     let mut t = Table::new(vec![
         Column::plain("iteration", "it."),
-        Column::new("residual", "‖R‖", Unit::None, Format::Sci(2)),
+        Column::new("residual", "‖R‖", force, Format::Sci(2)),
         Column::new("relative_residual", "‖R‖/‖R₀‖", Unit::None, Format::Sci(2)),
         Column::new("update", "‖Δu‖", length, Format::Sci(2)),
         Column::new("max_displacement", "max u", length, Format::Sci(4)),
