@@ -191,10 +191,12 @@ fn main() -> iga_contact::Result<()> {
     }
     print!("{}", table.to_markdown());
     chapter.table("factorisation", &table)?;
+    chapter.timed("factorisation.csv");
+    chapter.timed("factorisation.md");
     let f = chapter.facts();
     for (n, solve, set_up) in ratios {
-        f.number(&format!("solve_speedup_{n}"), solve, Format::Times(2))?;
-        f.number(&format!("setup_speedup_{n}"), set_up, Format::Times(1))?;
+        f.timed_number(&format!("solve_speedup_{n}"), solve, Format::Times(2))?;
+        f.timed_number(&format!("setup_speedup_{n}"), set_up, Format::Times(1))?;
     }
     chapter.finish()
 }

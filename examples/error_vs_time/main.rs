@@ -205,6 +205,7 @@ fn main() -> Result<()> {
         ])?;
     }
     chapter.table("runs", &runs)?;
+    chapter.timed("runs.csv"); // its `seconds` column
 
     // Which method reaches each target first: seconds (mesh) per method.
     let label = |m: Method| match m {
@@ -242,6 +243,8 @@ fn main() -> Result<()> {
         }
     }
     chapter.table("accuracy_per_second", &first)?;
+    chapter.timed("accuracy_per_second.csv");
+    chapter.timed("accuracy_per_second.md");
     let mut refs = Table::new(vec![
         Column::plain("solution", "solution"),
         Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
@@ -289,6 +292,7 @@ fn main() -> Result<()> {
             let pct = Format::Percent(1).render(t);
             series.push(Series::line(format!("target {pct}"), vec![(t0, t), (t1, t)]).dashed());
         }
+        chapter.timed(&format!("{key}_vs_time.svg"));
         line_chart(
             chapter.path(&format!("{key}_vs_time.svg")),
             &Axes {

@@ -161,6 +161,8 @@ fn main() -> Result<()> {
     }
     chapter.table("comparison", &comparison)?;
     chapter.table("timings", &timings)?;
+    chapter.timed("timings.csv");
+    chapter.timed("timings.md");
     // ANCHOR_END: tables
 
     // ANCHOR: facts
@@ -189,7 +191,7 @@ fn main() -> Result<()> {
             Format::Percent(1),
         )?;
         f.count(&format!("{key}_dofs"), r.dofs)?;
-        f.number(
+        f.timed_number(
             &format!("{key}_ratio"),
             iga_seconds / r.seconds,
             Format::Times(1),

@@ -426,10 +426,16 @@ fn main() -> Result<()> {
     )?;
     f.number("tolerance", PENALTY_TOLERANCE, Format::Percent(0))?;
     for r in &rows {
-        let key = format!("{}_theta{}", r.case, r.theta.value() as i64).replace(['.', '-'], "_");
-        match r.error {
-            Some(e) => f.number(&format!("{key}_error"), e, Format::Percent(1))?,
-            None => f.text(&format!("{key}_error"), "–")?,
+        // keys: the case name with `_` for `.` and `-`, then the θ: t1, t0, tm1
+        let theta = match r.theta {
+            Theta::Symmetric => "t1",
+            Theta::Incomplete => "t0",
+            Theta::Skew => "tm1",
+        };
+        let key = format!("{}_{theta}", r.case.replace(['.', '-'], "_"));
+        if let Some(e) = r.error {
+            f.number(&format!("{key}_error"), e, Format::Pow10(1))?;
+            f.number(&format!("{key}_percent"), e, Format::Percent(1))?;
         }
         f.text(&format!("{key}_status"), r.status)?;
         f.count(&format!("{key}_iterations"), r.history.len())?;

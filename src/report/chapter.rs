@@ -68,6 +68,34 @@ pub struct Chapter {
     dir: PathBuf,
     staging: PathBuf,
     facts: Facts,
+    /// Files that hold wall-clock times (see [`Chapter::timed`]).
+    timed: Vec<String>,
+}
+
+/// The name of the manifest a chapter program writes beside its outputs.
+pub const MANIFEST: &str = "manifest.toml";
+
+/// What [`Chapter::finish`] records about the outputs: which files and
+/// facts hold wall-clock times, and so differ from run to run. Everything
+/// else a chapter program writes is a function of the code alone, and the
+/// crate's tests compare it byte for byte with a fresh run.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Manifest {
+    pub timed_files: Vec<String>,
+    pub timed_facts: Vec<String>,
+}
+
+impl Manifest {
+    /// Reads `<dir>/manifest.toml`.
+    pub fn load(dir: &Path) -> Result<Self> {
+        let path = dir.join(MANIFEST);
+        let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        toml::from_str(&text)
+            .map_err(|e| Error::invalid(path.display().to_string(), "manifest", e.to_string()))
+    }
 }
 
 impl Chapter {
@@ -117,6 +145,7 @@ impl Chapter {
             dir,
             staging,
             facts: Facts::new(),
+            timed: Vec::new(),
         })
     }
 
@@ -147,14 +176,27 @@ impl Chapter {
         write_text(self.path(file), text)
     }
 
+    /// Marks `file` as holding wall-clock times: it changes from run to run.
+    pub fn timed(&mut self, file: &str) {
+        self.timed.push(file.to_string());
+    }
+
     /// The facts the chapter's prose quotes.
     pub fn facts(&mut self) -> &mut Facts {
         &mut self.facts
     }
 
-    /// Writes the facts file and swaps the complete set of files in.
+    /// Writes the facts file and the manifest, and swaps the complete set of
+    /// files in.
     pub fn finish(self) -> Result<()> {
         write_text(self.path(facts::FILE), &self.facts.to_text())?;
+        let manifest = Manifest {
+            timed_files: self.timed.clone(),
+            timed_facts: self.facts.timed_keys().map(String::from).collect(),
+        };
+        let text = toml::to_string(&manifest)
+            .map_err(|e| Error::invalid(MANIFEST, "manifest", e.to_string()))?;
+        write_text(self.path(MANIFEST), &text)?;
         let io = |p: &Path| {
             let p = p.display().to_string();
             move |source| Error::Io { path: p, source }

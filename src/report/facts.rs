@@ -24,9 +24,12 @@ use std::path::Path;
 pub const FILE: &str = "facts.txt";
 
 /// The facts of one chapter, by key.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct Facts {
     entries: BTreeMap<String, String>,
+    /// Keys whose values are wall-clock times or ratios of them, which
+    /// change from run to run.
+    timed: std::collections::BTreeSet<String>,
 }
 
 fn valid_key(key: &str) -> bool {
@@ -34,6 +37,14 @@ fn valid_key(key: &str) -> bool {
         && key
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+/// Facts are equal when their keys and texts are (which of them are timed
+/// is not part of the file).
+impl PartialEq for Facts {
+    fn eq(&self, other: &Self) -> bool {
+        self.entries == other.entries
+    }
 }
 
 impl Facts {
@@ -72,6 +83,20 @@ impl Facts {
             ));
         }
         self.text(key, format.render(value))
+    }
+
+    /// Records a number derived from wall-clock times (a time, or a ratio of
+    /// times measured in one run): it changes from run to run, so checks of
+    /// the book against a fresh run leave it out.
+    pub fn timed_number(&mut self, key: &str, value: f64, format: Format) -> Result<()> {
+        self.number(key, value, format)?;
+        self.timed.insert(key.to_string());
+        Ok(())
+    }
+
+    /// The keys recorded by [`Facts::timed_number`].
+    pub fn timed_keys(&self) -> impl Iterator<Item = &str> {
+        self.timed.iter().map(String::as_str)
     }
 
     /// Records an integer.
