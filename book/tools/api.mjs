@@ -84,27 +84,9 @@ export class ApiIndex {
     return out;
   }
 
-  /**
-   * The page (and anchor) of `target`, relative to the crate's doc folder,
-   * e.g. "solver/bfgs/fn.solve.html". `target` may start with the crate name
-   * or `crate::`, may end in `()` (a function or method) or `!` (a macro),
-   * and may carry a rustdoc-style disambiguator (`fn@`, `struct@`, `method@`, …). Throws with a clear message
-   * when the item does not exist or is ambiguous.
-   */
-  resolve(target) {
-    let t = target.trim();
-    let want = null;
-    const d = /^(\w+)@(.*)$/.exec(t);
-    if (d) [, want, t] = d;
-    // Like rustdoc's intra-doc links: `f()` is a function or method, `m!` a macro.
-    if (t.endsWith("()")) [want, t] = [want ?? "fn", t.slice(0, -2)];
-    else if (t.endsWith("!")) [want, t] = [want ?? "macro", t.slice(0, -1)];
-    const segs = t.split("::").filter((s) => s.length > 0);
-    if (segs[0] === this.crate || segs[0] === "crate") segs.shift();
-    if (segs.length === 0) return "index.html";
-    if (!segs.every((s) => /^[A-Za-z_]\w*$/.test(s))) {
-      throw new Error(`\`${target}\` is not a Rust path`);
-    }
+  /// The page of the item at exactly `segs` (a module path from the crate
+  /// root, possibly ending in a member), or null if there is none.
+  #exact(segs, want, target) {
     const key = segs.join("::");
     let found = this.items.get(key);
     if (found && want) found = found.filter((e) => e.kind === want);
@@ -125,8 +107,55 @@ export class ApiIndex {
         }
       }
       if (parents.length > 0) {
-        throw new Error(`\`${target}\`: ${parentKey} has no method, field, variant or associated item \`${member}\``);
+        throw new Error(
+          `\`${target}\`: ${parentKey} has no method, field, variant or associated item \`${member}\``,
+        );
       }
+    }
+    return null;
+  }
+
+  /**
+   * The page (and anchor) of `target`, relative to the crate's doc folder,
+   * e.g. "solver/bfgs/fn.solve.html". `target` may start with the crate name
+   * or leave out leading modules (`KnotVector::new`) if the rest is unique,
+   * or `crate::`, may end in `()` (a function or method) or `!` (a macro),
+   * and may carry a rustdoc-style disambiguator (`fn@`, `struct@`, `method@`, …). Throws with a clear message
+   * when the item does not exist or is ambiguous.
+   */
+  resolve(target) {
+    let t = target.trim();
+    let want = null;
+    const d = /^(\w+)@(.*)$/.exec(t);
+    if (d) [, want, t] = d;
+    // Like rustdoc's intra-doc links: `f()` is a function or method, `m!` a macro.
+    if (t.endsWith("()")) [want, t] = [want ?? "fn", t.slice(0, -2)];
+    else if (t.endsWith("!")) [want, t] = [want ?? "macro", t.slice(0, -1)];
+    const segs = t.split("::").filter((s) => s.length > 0);
+    if (segs[0] === this.crate || segs[0] === "crate") segs.shift();
+    if (segs.length === 0) return "index.html";
+    if (!segs.every((s) => /^[A-Za-z_]\w*$/.test(s))) {
+      throw new Error(`\`${target}\` is not a Rust path`);
+    }
+    const exact = this.#exact(segs, want, target);
+    if (exact !== null) return exact;
+    // A path may leave out its leading modules when the rest names exactly
+    // one item: `KnotVector::new` for `nurbs::knots::KnotVector::new`.
+    const found = new Set();
+    for (const [key, entries] of this.items) {
+      if (key === segs[0] || !key.endsWith(`::${segs[0]}`)) continue;
+      if (segs.length > 1 && !entries.some((e) => PARENT_KINDS.has(e.kind))) continue;
+      try {
+        const r = this.#exact([...key.split("::"), ...segs.slice(1)], want, target);
+        if (r !== null) found.add(r);
+      } catch {
+        // no such member under this candidate
+      }
+    }
+    if (found.size === 1) return [...found][0];
+    if (found.size > 1) {
+      const pages = [...found].map((f) => f.replace(/\.html/, "").replace(/\/(\w+)\./, "/")).join(", ");
+      throw new Error(`\`${target}\` names several items (${pages}): write more of its path`);
     }
     const like = this.#similar(segs[segs.length - 1]);
     const hint = like.length > 0 ? `; items of that name: ${like.join(", ")}` : "";

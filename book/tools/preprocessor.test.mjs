@@ -55,11 +55,20 @@ function fakeDocs() {
   const crate = path.join(dir, "demo");
   fs.mkdirSync(path.join(crate, "solver"), { recursive: true });
   const a = (kind, href, full, name) => `<a class="${kind}" href="${href}" title="${kind} ${full}">${name}</a>`;
+  fs.mkdirSync(path.join(crate, "other"), { recursive: true });
   fs.writeFileSync(
     path.join(crate, "index.html"),
     a("mod", "solver/index.html", "demo::solver", "solver") +
+      a("mod", "other/index.html", "demo::other", "other") +
       `<code>pub use solver::${a("fn", "solver/fn.solve.html", "demo::solver::solve", "solve")};</code>`,
   );
+  fs.writeFileSync(
+    path.join(crate, "other", "index.html"),
+    a("struct", "struct.Options.html", "demo::other::Options", "Options") +
+      a("struct", "struct.Mesh.html", "demo::other::Mesh", "Mesh"),
+  );
+  fs.writeFileSync(path.join(crate, "other", "struct.Options.html"), '<h4 id="method.old"></h4>');
+  fs.writeFileSync(path.join(crate, "other", "struct.Mesh.html"), '<h4 id="method.refine"></h4>');
   fs.writeFileSync(
     path.join(crate, "solver", "index.html"),
     a("fn", "fn.solve.html", "demo::solver::solve", "solve") +
@@ -78,6 +87,10 @@ test("api paths resolve to rustdoc pages, members to anchors", () => {
   assert.equal(api.resolve("solve"), "solver/fn.solve.html", "a re-export at the crate root");
   assert.equal(api.resolve("fn@solver::solve"), "solver/fn.solve.html");
   assert.equal(api.resolve("solver::solve!"), "solver/macro.solve.html");
+  // Leading modules may be left out when the rest is unique.
+  assert.equal(api.resolve("Mesh::refine"), "other/struct.Mesh.html#method.refine");
+  assert.equal(api.resolve("Options::new"), "solver/struct.Options.html#method.new");
+  assert.equal(api.resolve("Options::old"), "other/struct.Options.html#method.old");
   assert.equal(api.resolve("solver::solve()"), "solver/fn.solve.html");
 });
 
@@ -85,7 +98,9 @@ test("unknown and ambiguous api paths are errors naming the candidates", () => {
   const api = new ApiIndex(fakeDocs(), "demo");
   assert.throws(() => api.resolve("solver::solve"), /ambiguous: write one of fn@solver::solve, macro@solver::solve/);
   assert.throws(() => api.resolve("solver::Option"), /not an item of the crate demo/);
-  assert.throws(() => api.resolve("Options"), /items of that name: solver::Options \(struct\)/);
+  assert.throws(() => api.resolve("Options"), /names several items \(solver\/Options, other\/Options\)/);
+  assert.throws(() => api.resolve("Options::tidy"), /`Options::tidy` is not an item of the crate demo/);
+  assert.throws(() => api.resolve("tidy"), /is not an item/);
   assert.throws(() => api.resolve("solver::Options::old"), /has no method, field, variant or associated item `old`/);
 });
 
@@ -99,10 +114,17 @@ function runPreprocessor(content, docDir) {
 }
 
 test("the preprocessor renders maths Markdown-safely and links relative to the chapter", () => {
-  const r = runPreprocessor("A [`Options`](api:solver::Options).\n\n$a_*b|c$\n\n$$\nx\n- y \\tag{7}\n$$\n", fakeDocs());
+  const r = runPreprocessor(
+    "A [`Options`](api:solver::Options), [`Mesh::refine(2)`](api:).\n\n$a_*b|c$\n\n$$\nx\n- y \\tag{7}\n$$\n",
+    fakeDocs(),
+  );
   assert.equal(r.status, 0, r.stderr);
   const [link, inline, display] = JSON.parse(r.stdout).items[0].Chapter.content.split("\n\n");
-  assert.equal(link, "A [`Options`](../api/demo/solver/struct.Options.html).");
+  assert.equal(
+    link,
+    "A [`Options`](../api/demo/solver/struct.Options.html), " +
+      "[`Mesh::refine(2)`](../api/demo/other/struct.Mesh.html#method.refine).",
+  );
   assert.match(display, /^<span class="katex-display">.*class="tag"/);
   // KaTeX's HTML holds no newline, and no Markdown punctuation between its tags.
   for (const html of [inline, display]) {
