@@ -2,16 +2,18 @@
 # (Re)create book/src/katex/ from the npm package `katex`.
 #
 # The assets are committed, so building or reading the book never needs this
-# script or npm; run it only to change the KaTeX version. The version must match
-# the KaTeX that mdbook-katex bundles for pre-rendering (mdbook-katex 0.10.0 ->
-# crate katex 0.4.6 -> KaTeX 0.16.4), otherwise the HTML and the CSS may disagree.
+# script; run it only to change the KaTeX version. The version must match the
+# npm package katex that the book's preprocessor renders with (pinned in
+# book/tools/package.json and package-lock.json), otherwise the HTML and the CSS
+# may disagree; scripts/install-tools.sh refuses a mismatch. To upgrade:
+#   (cd book/tools && npm install --save-exact katex@X.Y.Z) && scripts/fetch-katex-assets.sh X.Y.Z
 #
 # Only the woff2 fonts are kept (about 0.3 MB instead of 1.2 MB); every current
 # browser reads woff2, and the stylesheet is rewritten to reference only those.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-KATEX_VERSION="${1:-0.16.4}"
+KATEX_VERSION="${1:-$(node -e 'console.log(require("./book/tools/package-lock.json").packages["node_modules/katex"].version)')}"
 DEST="book/src/katex"
 
 tmp="$(mktemp -d)"

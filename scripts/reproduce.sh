@@ -4,10 +4,9 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 
-if ! command -v mdbook >/dev/null 2>&1 || ! command -v mdbook-katex >/dev/null 2>&1; then
-    echo "==> book tools missing: bash scripts/install-tools.sh"
-    bash scripts/install-tools.sh
-fi
+# Idempotent: installs only missing tools (mdbook, the book's preprocessor, meshio).
+echo "==> bash scripts/install-tools.sh"
+bash scripts/install-tools.sh
 
 echo "==> cargo run --release --bin iga-contact -- reproduce"
 cargo run --release --bin iga-contact -- reproduce
@@ -22,7 +21,10 @@ cargo run --release --example lame
 echo "==> cargo run --release --example kernel_factorisation"
 cargo run --release --example kernel_factorisation
 
-echo "==> mdbook build book"
-mdbook build book
+# The formulation chapters' figures: basis functions, the disk's control net,
+# the contact sketch.
+echo "==> cargo run --release --example formulation"
+cargo run --release --example formulation
 
-echo "==> the book is at $(pwd)/book/book/index.html"
+# rustdoc, then the book, with the API pages copied into it.
+bash scripts/build-book.sh

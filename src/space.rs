@@ -172,6 +172,49 @@ impl Space {
         })
     }
 
+    /// Eq. (2): the displacement u(ξ, η) = Σ_A R_A(ξ, η) d_A at a point of
+    /// the parameter domain, where `d(A)` is the displacement of control
+    /// point A. For body `b` of a solved problem with full displacement
+    /// vector `full`, that is `|a| map.cp_displacement(&full, b, a)`.
+    ///
+    /// ```
+    /// # use iga_contact::{geometry, space::Space};
+    /// let space = Space::new(geometry::rectangle(0.0, 0.0, 2.0, 1.0)?, None)?;
+    /// // d_A = (0.01 x_A, 0): a uniform stretch, reproduced exactly.
+    /// let d = |a: usize| [0.01 * space.patch.points[a][0], 0.0];
+    /// let u = space.displacement(0.25, 0.5, d)?;
+    /// assert!((u[0] - 0.005).abs() < 1e-15 && u[1] == 0.0);
+    /// # Ok::<(), iga_contact::Error>(())
+    /// ```
+    pub fn displacement(
+        &self,
+        xi: f64,
+        eta: f64,
+        d: impl Fn(usize) -> [f64; 2],
+    ) -> Result<[f64; 2]> {
+        for (field, v, k) in [
+            ("ξ", xi, &self.patch.knots[0]),
+            ("η", eta, &self.patch.knots[1]),
+        ] {
+            if !(v >= k.first() && v <= k.last()) {
+                return Err(Error::invalid(
+                    field,
+                    v,
+                    format!(
+                        "must lie in the parameter range [{}, {}]",
+                        k.first(),
+                        k.last()
+                    ),
+                ));
+            }
+        }
+        let b = self.patch.basis(xi, eta);
+        Ok(b.indices.iter().zip(&b.r).fold([0.0; 2], |u, (&a, &r)| {
+            let da = d(a);
+            [u[0] + r * da[0], u[1] + r * da[1]]
+        }))
+    }
+
     /// Gauss points of element `e`.
     pub fn quadrature(&self, e: &Element) -> Result<Vec<QuadPoint>> {
         let gx = quadrature::on_interval(self.quad_order, e.range[0][0], e.range[0][1]);

@@ -410,22 +410,32 @@ impl Ticks {
             .unwrap_or(0)
     }
 
-    /// Ticks whose labels leave at least a label's height (or a gap between
-    /// neighbours along x) of space between them.
+    /// The densest ticks (at most 10) whose labels do not crowd each other:
+    /// neighbours at least a label's width apart plus a gap along x, two
+    /// label heights along y. Spacing is checked pixel by pixel, because on
+    /// a log axis 8, 9 and 10 sit much closer than 10, 20 and 50.
     fn fitting(b: Bounds, log: bool, length: i32, horizontal: bool) -> Ticks {
         let mut max_n = 10;
         loop {
             let t = Ticks::new(b, log, max_n);
-            let extent = if horizontal {
-                t.max_label_width() + 24
-            } else {
-                2 * text_size("0", TICK_SIZE).1 + 8
-            };
-            if max_n <= 2 || t.major.len() as i32 * extent <= length {
+            if max_n <= 2 || t.labels_fit(b, length, horizontal) {
                 return t;
             }
             max_n -= 1;
         }
+    }
+
+    fn labels_fit(&self, b: Bounds, length: i32, horizontal: bool) -> bool {
+        let px = |p: f64| (p - b.lo) / b.span() * f64::from(length);
+        let height = text_size("0", TICK_SIZE).1;
+        self.major.windows(2).all(|w| {
+            let need = if horizontal {
+                (text_size(&w[0].1, TICK_SIZE).0 + text_size(&w[1].1, TICK_SIZE).0) / 2 + 24
+            } else {
+                2 * height + 8
+            };
+            (px(w[1].0) - px(w[0].0)).abs() >= f64::from(need)
+        })
     }
 
     fn new(b: Bounds, log: bool, max_n: usize) -> Ticks {
@@ -536,67 +546,62 @@ fn format_linear(values: &[f64], step: f64) -> Vec<String> {
     }
 }
 
-fn log_label(mantissa: u32, exp: i32) -> String {
-    if mantissa == 1 {
-        format!("10{}", superscript(exp))
-    } else {
-        format!("{mantissa}×10{}", superscript(exp))
-    }
+/// Labels of log-axis ticks m·10^k: plain decimals ("0.02", "50") when every
+/// value lies in [10⁻³, 10⁵), otherwise "10ᵏ" and "m×10ᵏ".
+fn log_labels(ticks: &[(u32, i32)]) -> Vec<String> {
+    let plain = ticks.iter().all(|&(_, k)| (-3..5).contains(&k));
+    ticks
+        .iter()
+        .map(|&(m, k)| match (plain, m) {
+            (true, _) => format!("{}", f64::from(m) * 10f64.powi(k)),
+            (false, 1) => format!("10{}", superscript(k)),
+            (false, _) => format!("{m}×10{}", superscript(k)),
+        })
+        .collect()
 }
 
 /// Ticks of a log axis whose bounds are given in decades (log10 units).
 ///
-/// Whole decades are labelled when at least two fall in range, thinned to a
-/// stride when there are many; the 2…9 multiples become unlabelled grid
-/// lines. Narrower ranges label the 1/2/5 (or all) multiples instead, and a
-/// range inside a single such step falls back to linear round values.
+/// Labels the densest of these that gives at least two and at most `max_n`
+/// labels: every multiple m·10ᵏ (m = 1…9), the 1-2-5 multiples, the
+/// decades, every second (third, …) decade. The multiples not labelled
+/// become grid lines while there are not too many of them. A range inside a
+/// single step falls back to linear round values.
 fn log_ticks(b: Bounds, max_n: usize) -> Ticks {
-    let max_n = max_n.max(2) as i32;
+    let max_n = max_n.max(2);
     let inside = |p: f64| p >= b.lo - 1e-9 && p <= b.hi + 1e-9;
-    let k0 = (b.lo - 1e-9).ceil() as i32;
-    let k1 = (b.hi + 1e-9).floor() as i32;
-    let decades = k1 - k0 + 1;
-    if decades >= 2 {
-        let stride = (decades + max_n - 1) / max_n;
-        let mut major = Vec::new();
-        let mut minor = Vec::new();
-        for k in (k0 - 1)..=(k1 + 1) {
-            if inside(k as f64) {
-                if k.rem_euclid(stride) == 0 {
-                    major.push((k as f64, log_label(1, k)));
-                } else {
-                    minor.push(k as f64);
-                }
-            }
-            if stride == 1 && decades <= 12 {
-                for m in 2..10 {
-                    let p = k as f64 + (m as f64).log10();
-                    if inside(p) {
-                        minor.push(p);
-                    }
-                }
-            }
-        }
-        return Ticks { major, minor };
-    }
-    let candidates: Vec<(u32, i32, f64)> = ((b.lo.floor() as i32)..=(b.hi.ceil() as i32))
-        .flat_map(|k| (1..10).map(move |m| (m, k, k as f64 + (m as f64).log10())))
-        .filter(|&(_, _, p)| inside(p))
+    let pos = |(m, k): (u32, i32)| k as f64 + f64::from(m).log10();
+    let all: Vec<(u32, i32)> = ((b.lo.floor() as i32)..=(b.hi.ceil() as i32))
+        .flat_map(|k| (1..10).map(move |m| (m, k)))
+        .filter(|&t| inside(pos(t)))
         .collect();
-    let all_fit = candidates.len() as i32 <= max_n;
-    let (major, minor): (Vec<_>, Vec<_>) = candidates
-        .into_iter()
-        .partition(|&(m, _, _)| all_fit || matches!(m, 1 | 2 | 5));
-    if major.len() >= 2 {
+    // Level 0: every multiple; 1: the 1-2-5 multiples; s + 1: every s-th decade.
+    let labelled = |level: i32, (m, k): (u32, i32)| match level {
+        0 => true,
+        1 => matches!(m, 1 | 2 | 5),
+        s => m == 1 && k.rem_euclid(s - 1) == 0,
+    };
+    let decades = all.iter().filter(|t| t.0 == 1).count() as i32;
+    let level = (0..=decades.max(1) + 1).find(|&level| {
+        let n = all.iter().filter(|&&t| labelled(level, t)).count();
+        (2..=max_n).contains(&n)
+    });
+    if let Some(level) = level {
+        let (major, rest): (Vec<_>, Vec<_>) =
+            all.iter().copied().partition(|&t| labelled(level, t));
+        // A few dozen grid lines at most: beyond that they grey the plot.
+        let minor = if all.len() <= 120 {
+            rest.into_iter().map(pos).collect()
+        } else {
+            rest.into_iter().filter(|t| t.0 == 1).map(pos).collect()
+        };
+        let labels = log_labels(&major);
         return Ticks {
-            major: major
-                .into_iter()
-                .map(|(m, k, p)| (p, log_label(m, k)))
-                .collect(),
-            minor: minor.into_iter().map(|(_, _, p)| p).collect(),
+            major: major.into_iter().map(pos).zip(labels).collect(),
+            minor,
         };
     }
-    let (values, step) = linear_tick_values(10f64.powf(b.lo), 10f64.powf(b.hi), max_n as usize);
+    let (values, step) = linear_tick_values(10f64.powf(b.lo), 10f64.powf(b.hi), max_n);
     let values: Vec<f64> = values.into_iter().filter(|&v| v > 0.0).collect();
     let labels = format_linear(&values, step);
     Ticks {
@@ -1530,6 +1535,11 @@ impl Figure for FieldFigure {
     }
 }
 
+// The formulation chapters' figures live in their own file but are a child
+// of this module, so that they share its layout and rendering.
+#[path = "figures.rs"]
+pub mod figures;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1558,12 +1568,15 @@ mod tests {
         );
     }
 
+    fn labels(t: &Ticks) -> Vec<&str> {
+        t.major.iter().map(|(_, s)| s.as_str()).collect()
+    }
+
     #[test]
     fn log_labels_are_powers_of_ten() {
         let t = log_ticks(Bounds { lo: -12.3, hi: 0.2 }, 8);
-        let labels: Vec<_> = t.major.iter().map(|(_, s)| s.as_str()).collect();
         assert_eq!(
-            labels,
+            labels(&t),
             ["10⁻¹²", "10⁻¹⁰", "10⁻⁸", "10⁻⁶", "10⁻⁴", "10⁻²", "10⁰"]
         );
         let narrow = log_ticks(Bounds { lo: 0.1, hi: 0.9 }, 8);
@@ -1576,6 +1589,28 @@ mod tests {
             8,
         );
         assert!(tiny.major.len() >= 2, "{tiny:?}");
+    }
+
+    /// An axis over 2…128 elements (log10 0.2…2.2 with padding) is labelled
+    /// 1-2-5, not just at 10 and 100; over 8…64 the labels do not run into
+    /// each other (they once read "8×10⁰9×10⁰10¹").
+    #[test]
+    fn short_log_ranges_label_sub_decades_that_fit() {
+        let b = Bounds { lo: 0.2, hi: 2.2 };
+        let t = Ticks::fitting(b, true, 640, true);
+        assert_eq!(labels(&t), ["2", "5", "10", "20", "50", "100"]);
+        let b = Bounds {
+            lo: 8f64.log10() - 0.05,
+            hi: 64f64.log10() + 0.05,
+        };
+        let t = Ticks::fitting(b, true, 640, true);
+        assert!(t.labels_fit(b, 640, true), "{t:?}");
+        assert_eq!(labels(&t), ["10", "20", "50"]);
+        // Vertical axes need more room per label, so fewer labels.
+        let t = Ticks::fitting(Bounds { lo: -3.1, hi: 0.1 }, true, 300, false);
+        assert_eq!(labels(&t), ["0.001", "0.01", "0.1", "1"]);
+        let t = Ticks::fitting(Bounds { lo: -6.1, hi: -4.9 }, true, 600, false);
+        assert_eq!(labels(&t), ["10⁻⁶", "2×10⁻⁶", "5×10⁻⁶", "10⁻⁵"]);
     }
 
     #[test]

@@ -1,0 +1,470 @@
+//! Figures of the formulation chapters: the NURBS basis functions of a knot
+//! vector, a control net with its weights, and a sketch of the contact
+//! geometry (slave point, closest-point projection, normals and gap) drawn
+//! from the contact code itself.
+//!
+//! This module is a child of [`super`] (the `plot` module) so that it shares
+//! that module's layout, fonts, palette and atomic rendering; it only adds
+//! text labels placed at data points and the figures built on them.
+
+use super::*;
+use crate::contact::ContactPoint;
+use crate::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
+
+/// Where a [`Label`] sits relative to its point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LabelSide {
+    #[default]
+    Right,
+    Left,
+    Above,
+    Below,
+}
+
+/// A text placed beside a point of a figure, in data coordinates.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Label {
+    pub at: [f64; 2],
+    pub text: String,
+    pub side: LabelSide,
+    /// Index into [`PALETTE`].
+    pub color: usize,
+}
+
+impl Label {
+    pub fn new(at: [f64; 2], text: impl Into<String>, side: LabelSide) -> Self {
+        Label {
+            at,
+            text: text.into(),
+            side,
+            color: BLACK_INDEX,
+        }
+    }
+
+    pub fn colored(mut self, color: usize) -> Self {
+        self.color = color;
+        self
+    }
+}
+
+const LABEL_SIZE: f64 = 16.0;
+/// Pixels between a labelled point and its text.
+const LABEL_OFFSET: i32 = 7;
+
+fn check_labels(labels: &[Label]) -> Result<()> {
+    for (i, l) in labels.iter().enumerate() {
+        for (k, &v) in l.at.iter().enumerate() {
+            check_finite(|| format!("labels[{i}].at[{k}]"), v)?;
+        }
+    }
+    Ok(())
+}
+
+struct AnnotatedFigure {
+    geometry: GeometryFigure,
+    labels: Vec<Label>,
+}
+
+impl Figure for AnnotatedFigure {
+    fn frame(&self) -> &Frame {
+        &self.geometry.frame
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
+        let frame = &self.geometry.frame;
+        draw_header(root, frame)?;
+        let region = chart_region(root, frame);
+        let mut chart = draw_axes(&region, frame, true)?;
+        draw_polylines(&mut chart, &self.geometry.lines)?;
+        for l in &self.labels {
+            let (h, v, dx, dy) = match l.side {
+                LabelSide::Right => (HPos::Left, VPos::Center, LABEL_OFFSET, 0),
+                LabelSide::Left => (HPos::Right, VPos::Center, -LABEL_OFFSET, 0),
+                LabelSide::Above => (HPos::Center, VPos::Bottom, 0, -LABEL_OFFSET),
+                LabelSide::Below => (HPos::Center, VPos::Top, 0, LABEL_OFFSET),
+            };
+            let style = font(LABEL_SIZE)
+                .color(&palette(l.color))
+                .pos(Pos::new(h, v));
+            chart.draw_series(std::iter::once(
+                EmptyElement::at((l.at[0], l.at[1])) + Text::new(l.text.clone(), (dx, dy), style),
+            ))?;
+        }
+        draw_box(root, frame)
+    }
+}
+
+/// A [`geometry_figure`] with text labels at data points (names of points,
+/// weights of control points). Labels do not widen the plotted range.
+pub fn annotated_figure(
+    path: impl AsRef<Path>,
+    title: &str,
+    lines: &[Polyline],
+    labels: &[Label],
+) -> Result<()> {
+    check_labels(labels)?;
+    let fig = AnnotatedFigure {
+        geometry: GeometryFigure::new(title, lines)?,
+        labels: labels.to_vec(),
+    };
+    render(path.as_ref(), &fig)
+}
+
+// ---------------------------------------------------------------------------
+// Basis functions
+// ---------------------------------------------------------------------------
+
+/// Subscript digits, for labels such as N₃,₂.
+fn subscript(n: usize) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| char::from_u32('₀' as u32 + c.to_digit(10).unwrap_or(0)).unwrap_or(c))
+        .collect()
+}
+
+/// The B-spline basis N_{i,p} (`weights = None`) or the rational basis
+/// R_i = w_i N_{i,p} / Σ_j w_j N_{j,p} of `knots`, sampled at `n` points
+/// per knot span (knots included, so kinks at repeated knots are drawn
+/// sharp): one vector of (ξ, value) per function.
+pub fn sample_basis(
+    knots: &KnotVector,
+    weights: Option<&[f64]>,
+    n: usize,
+) -> Result<Vec<Vec<(f64, f64)>>> {
+    let nb = knots.n_basis();
+    if let Some(w) = weights {
+        if w.len() != nb {
+            return Err(Error::invalid(
+                "weights",
+                format!("{} weights", w.len()),
+                format!("the knot vector has {nb} basis functions"),
+            ));
+        }
+        for (i, &wi) in w.iter().enumerate() {
+            if !(wi.is_finite() && wi > 0.0) {
+                return Err(Error::invalid(
+                    format!("weights[{i}]"),
+                    wi,
+                    "must be positive and finite",
+                ));
+            }
+        }
+    }
+    if n == 0 {
+        return Err(Error::invalid("samples per span", n, "must be at least 1"));
+    }
+    let p = knots.degree();
+    let mut out = vec![Vec::new(); nb];
+    for (span, a, b) in knots.spans() {
+        for k in 0..=n {
+            let xi = a + (b - a) * k as f64 / n as f64;
+            // Evaluated in this span, so both one-sided values at a knot appear.
+            let values = &knots.basis_ders(span, xi, 0)[0];
+            let first = span - p;
+            let wsum: f64 = match weights {
+                Some(w) => (0..=p).map(|j| w[first + j] * values[j]).sum(),
+                None => 1.0,
+            };
+            for (j, &v) in values.iter().enumerate() {
+                let w = weights.map_or(1.0, |w| w[first + j]);
+                out[first + j].push((xi, w * v / wsum));
+            }
+        }
+    }
+    // Outside its support a function is zero: close each curve to the ends
+    // of the parameter range so that it reads as a function on all of it.
+    let (lo, hi) = (knots.first(), knots.last());
+    for f in &mut out {
+        if f.first().is_some_and(|q| q.0 > lo) {
+            f.insert(0, (lo, 0.0));
+        }
+        if f.last().is_some_and(|q| q.0 < hi) {
+            f.push((hi, 0.0));
+        }
+    }
+    Ok(out)
+}
+
+/// Formats a weight or knot compactly: 0.7071, 1, 0.5.
+fn short(v: f64) -> String {
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    minus(s.to_string())
+}
+
+/// One basis function's curve in a [`BasisFigure`].
+struct BasisCurve {
+    points: Vec<(f64, f64)>,
+    /// Index into [`PALETTE`].
+    color: usize,
+    /// The B-spline drawn under a rational function.
+    dashed: bool,
+}
+
+struct BasisFigure {
+    frame: Frame,
+    curves: Vec<BasisCurve>,
+    breaks: Vec<f64>,
+}
+
+impl Figure for BasisFigure {
+    fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
+        draw_header(root, &self.frame)?;
+        let region = chart_region(root, &self.frame);
+        let mut chart = draw_axes(&region, &self.frame, true)?;
+        let (lo, hi) = (self.frame.y_range.lo, self.frame.y_range.hi);
+        for &k in &self.breaks {
+            let style = ShapeStyle::from(&RGBColor(0x99, 0x99, 0x99)).stroke_width(1);
+            chart.draw_series(DashedLineSeries::new(vec![(k, lo), (k, hi)], 4, 4, style))?;
+        }
+        for curve in &self.curves {
+            let c = palette(curve.color);
+            let points = curve.points.clone();
+            if curve.dashed {
+                let style = ShapeStyle::from(&c).stroke_width(1);
+                chart.draw_series(DashedLineSeries::new(points, 5, 4, style))?;
+            } else {
+                let style = ShapeStyle::from(&c).stroke_width(2);
+                chart.draw_series(LineSeries::new(points, style))?;
+            }
+        }
+        draw_box(root, &self.frame)
+    }
+}
+
+/// The basis functions of `knots` on one chart, one colour per function,
+/// with grey dashed lines at the knots. With `weights`, the rational basis
+/// R_i is drawn solid and the B-splines N_{i,p} it is built from dashed in
+/// the same colour, so the pull of each weight is visible.
+pub fn basis_figure(
+    path: impl AsRef<Path>,
+    title: &str,
+    knots: &KnotVector,
+    weights: Option<&[f64]>,
+) -> Result<()> {
+    const SAMPLES_PER_SPAN: usize = 60;
+    let p = knots.degree();
+    let mut curves = Vec::new();
+    let mut legend = Vec::new();
+    let rational = sample_basis(knots, weights, SAMPLES_PER_SPAN)?;
+    for (i, f) in rational.into_iter().enumerate() {
+        let color = i % 10;
+        let label = match weights {
+            Some(_) => format!("R{}", subscript(i)),
+            None => format!("N{},{}", subscript(i), subscript(p)),
+        };
+        legend.push(LegendEntry {
+            label,
+            color: palette(color),
+            width: 2,
+            dashed: false,
+            marker: None,
+        });
+        curves.push(BasisCurve {
+            points: f,
+            color,
+            dashed: false,
+        });
+    }
+    if weights.is_some() {
+        for (i, f) in sample_basis(knots, None, SAMPLES_PER_SPAN)?
+            .into_iter()
+            .enumerate()
+        {
+            curves.push(BasisCurve {
+                points: f,
+                color: i % 10,
+                dashed: true,
+            });
+        }
+        legend.push(LegendEntry {
+            label: "B-splines N (all weights 1)".into(),
+            color: palette(7),
+            width: 1,
+            dashed: true,
+            marker: None,
+        });
+    }
+    let breaks = knots.breaks();
+    let x = Bounds {
+        lo: knots.first(),
+        hi: knots.last(),
+    }
+    .padded(0.03, "knot range")?;
+    let y = Bounds::of(curves.iter().flat_map(|c| c.points.iter().map(|q| q.1)))
+        .unwrap_or(Bounds { lo: 0.0, hi: 1.0 });
+    let y = Bounds {
+        lo: y.lo.min(0.0),
+        hi: y.hi.max(1.0),
+    }
+    .padded(0.05, "basis values")?;
+    let frame = Frame::fixed(
+        (WIDTH, LINE_CHART_HEIGHT),
+        title,
+        legend,
+        "ξ",
+        "value",
+        x,
+        y,
+        (false, false),
+    );
+    render(
+        path.as_ref(),
+        &BasisFigure {
+            frame,
+            curves,
+            breaks,
+        },
+    )
+}
+
+// ---------------------------------------------------------------------------
+// Control net
+// ---------------------------------------------------------------------------
+
+/// The body of `patch` with its element boundaries (knot lines), its control
+/// net, and the weight of every control point written beside it.
+pub fn control_net_figure(path: impl AsRef<Path>, title: &str, patch: &NurbsPatch) -> Result<()> {
+    const SEGMENTS: usize = 64;
+    let mut lines = Vec::new();
+    for dir in 0..2 {
+        for &c in &patch.knots[dir].breaks() {
+            lines.push(
+                Polyline::new(patch.iso_curve(dir, c, SEGMENTS), LineKind::Solid, 0)
+                    .labelled("element boundaries"),
+            );
+        }
+    }
+    let [n0, n1] = patch.n();
+    let row = |j: usize| (0..n0).map(|i| patch.points[patch.index(i, j)]).collect();
+    let col = |i: usize| (0..n1).map(|j| patch.points[patch.index(i, j)]).collect();
+    for j in 0..n1 {
+        lines.push(Polyline::new(row(j), LineKind::ControlNet, 3).labelled("control net"));
+    }
+    for i in 0..n0 {
+        lines.push(Polyline::new(col(i), LineKind::ControlNet, 3).labelled("control net"));
+    }
+    // Labels go away from the body's centre so that they sit outside the
+    // net's lines where possible.
+    let n = patch.points.len() as f64;
+    let centre = patch
+        .points
+        .iter()
+        .fold([0.0, 0.0], |c, p| [c[0] + p[0] / n, c[1] + p[1] / n]);
+    let labels: Vec<Label> = patch
+        .points
+        .iter()
+        .zip(&patch.weights)
+        .map(|(&p, &w)| {
+            let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
+            let side = if dx.abs() >= dy.abs() {
+                if dx >= 0.0 {
+                    LabelSide::Right
+                } else {
+                    LabelSide::Left
+                }
+            } else if dy >= 0.0 {
+                LabelSide::Above
+            } else {
+                LabelSide::Below
+            };
+            Label::new(p, short(w), side).colored(3)
+        })
+        .collect();
+    annotated_figure(path, title, &lines, &labels)
+}
+
+// ---------------------------------------------------------------------------
+// Contact sketch
+// ---------------------------------------------------------------------------
+
+/// An arrow from `tail` along `dir` (unit) of length `len`, as a shaft and
+/// a two-stroke head.
+fn arrow(tail: [f64; 2], dir: [f64; 2], len: f64, color: usize, label: &str) -> Vec<Polyline> {
+    let head = [tail[0] + len * dir[0], tail[1] + len * dir[1]];
+    let back = 0.22 * len;
+    let barb = |s: f64| {
+        let (c, sn) = (0.93969, s * 0.34202); // ±20°
+        let d = [-(c * dir[0] - sn * dir[1]), -(sn * dir[0] + c * dir[1])];
+        [head[0] + back * d[0], head[1] + back * d[1]]
+    };
+    vec![
+        Polyline::new(vec![tail, head], LineKind::Solid, color).labelled(label),
+        Polyline::new(vec![barb(1.0), head, barb(-1.0)], LineKind::Solid, color),
+    ]
+}
+
+/// A sketch of the contact geometry of Eqs. (4)–(5) from contact points
+/// built by the contact code ([`crate::contact::contact_points`], which
+/// projects each slave point with [`crate::contact::projection::closest_point`]):
+/// the slave and master curves, every point's projection ray (x¹ to
+/// x̄² = x¹ + g₀ n¹, thin), and for the point `highlight` the slave point
+/// x¹, its projection x̄², the master's outward normal n² there, the slave
+/// normal n¹ = −n², and the gap g₀.
+pub fn contact_sketch(
+    path: impl AsRef<Path>,
+    title: &str,
+    slave: &NurbsCurve,
+    master: &NurbsCurve,
+    points: &[ContactPoint],
+    highlight: usize,
+) -> Result<()> {
+    const SEGMENTS: usize = 96;
+    let Some(cp) = points.get(highlight) else {
+        return Err(Error::invalid(
+            "highlight",
+            highlight,
+            format!("there are {} contact points", points.len()),
+        ));
+    };
+    let curve = |c: &NurbsCurve| -> Vec<[f64; 2]> {
+        let (a, b) = (c.knots.first(), c.knots.last());
+        (0..=SEGMENTS)
+            .map(|k| c.point(a + (b - a) * k as f64 / SEGMENTS as f64))
+            .collect()
+    };
+    let foot = |cp: &ContactPoint| {
+        [
+            cp.x[0] + cp.g0 * cp.normal[0],
+            cp.x[1] + cp.g0 * cp.normal[1],
+        ]
+    };
+    let (slave_line, master_line) = (curve(slave), curve(master));
+    let Some((bx, by)) = polyline_bounds(&[
+        Polyline::new(slave_line.clone(), LineKind::Solid, 0),
+        Polyline::new(master_line.clone(), LineKind::Solid, 0),
+    ]) else {
+        return Err(Error::invalid("curves", "empty", "nothing to draw"));
+    };
+    let (x1, x2, n1) = (cp.x, foot(cp), cp.normal);
+    let n2 = [-n1[0], -n1[1]];
+    // The normals lie on the projection ray (the projection is orthogonal):
+    // each covers a third of the gap from its own end, so they never meet.
+    let len = (cp.g0.abs() / 3.0).min(0.15 * bx.span().max(by.span()));
+    let mut lines = vec![
+        Polyline::new(slave_line, LineKind::Solid, 0).labelled("slave Γc¹"),
+        Polyline::new(master_line, LineKind::Solid, 1).labelled("master Γc²"),
+    ];
+    for p in points {
+        lines.push(Polyline::new(vec![p.x, foot(p)], LineKind::Thin, 7).labelled("projections"));
+    }
+    lines.push(Polyline::new(vec![x1, x2], LineKind::Dashed, BLACK_INDEX).labelled("gap g₀"));
+    lines.extend(arrow(x1, n1, len, 3, "n¹ = −n²"));
+    lines.extend(arrow(x2, n2, len, 2, "n² (master, outward)"));
+    lines.push(Polyline::new(vec![x1], LineKind::ControlNet, BLACK_INDEX));
+    lines.push(Polyline::new(vec![x2], LineKind::ControlNet, BLACK_INDEX));
+    let mid = [0.5 * (x1[0] + x2[0]), 0.5 * (x1[1] + x2[1])];
+    let tip = |x: [f64; 2], d: [f64; 2]| [x[0] + len * d[0], x[1] + len * d[1]];
+    let labels = [
+        Label::new(x1, "x¹", LabelSide::Left),
+        Label::new(x2, "x̄²", LabelSide::Left),
+        Label::new(mid, format!("g₀ = {}", short(cp.g0)), LabelSide::Right),
+        Label::new(tip(x1, n1), "n¹", LabelSide::Left).colored(3),
+        Label::new(tip(x2, n2), "n²", LabelSide::Left).colored(2),
+    ];
+    annotated_figure(path, title, &lines, &labels)
+}
