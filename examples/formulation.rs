@@ -16,14 +16,14 @@
 //! cargo run --release --example formulation
 //! ```
 
-use iga_contact::benchmarks::{Hertz, HERTZ_RADIUS};
 use iga_contact::contact::{contact_points, ContactPair, Integration, Master};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry;
 use iga_contact::nurbs::{KnotVector, NurbsCurve, Side};
+use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::figures::{basis_figure, contact_sketch, control_net_figure};
+use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::space::Space;
-use iga_contact::studies::default_dir;
 use std::process::ExitCode;
 
 /// A circular arc of radius `r` about `c` from angle `from` to `to` (radians,
@@ -40,38 +40,44 @@ fn arc(c: [f64; 2], r: f64, from: f64, to: f64) -> iga_contact::Result<NurbsCurv
 }
 
 fn run() -> iga_contact::Result<()> {
-    let out = default_dir("formulation");
+    let chapter = Chapter::from_args("formulation")?;
+    let out = |file: &str| chapter.path(file);
 
     let knots = KnotVector::new(vec![0.0, 0.0, 0.0, 0.25, 0.5, 0.5, 1.0, 1.0, 1.0], 2)?;
     basis_figure(
-        out.join("basis_bspline.svg"),
+        out("basis_bspline.svg"),
         "Quadratic B-splines, Ξ = {0, 0, 0, ¼, ½, ½, 1, 1, 1}",
         &knots,
         None,
     )?;
     let weights = [1.0, 1.0, 3.0, 1.0, 0.5, 1.0];
     basis_figure(
-        out.join("basis_nurbs.svg"),
+        out("basis_nurbs.svg"),
         "Rational basis with weights w = (1, 1, 3, 1, 0.5, 1)",
         &knots,
         Some(&weights),
     )?;
 
-    let r = HERTZ_RADIUS;
-    let coarse = geometry::half_disk([0.0, r], r)?;
+    let scene = Scene::shipped("hertz.toml")?;
+    let GeometrySpec::HalfDisk { center, radius: r } = scene.bodies[0].geometry else {
+        unreachable!("the Hertz scene is a half disk")
+    };
+    let coarse = geometry::half_disk(center, r)?;
     control_net_figure(
-        out.join("half_disk_net.svg"),
+        out("half_disk_net.svg"),
         "The half disk as built: one element, weights at the control points",
         &coarse,
     )?;
-    let refined = Hertz {
-        degree: 2,
-        elements: 2,
-        ..Hertz::default()
-    }
-    .patch()?;
+    let material = scene.bodies[0].material;
+    let refined = scene
+        .refined("disk", RefineSpec::iga(2, [2, 2]))?
+        .build()?
+        .bodies[0]
+        .space
+        .patch
+        .clone();
     control_net_figure(
-        out.join("half_disk_net_p2.svg"),
+        out("half_disk_net_p2.svg"),
         "k-refined to p = 2 with 2 × 2 elements",
         &refined,
     )?;
@@ -90,17 +96,15 @@ fn run() -> iga_contact::Result<()> {
     let bodies = vec![Body {
         name: "disk".into(),
         space: Space::new(slave.clone(), None)?,
-        material: Hertz::material(),
+        material,
     }];
     let map = DofMap::builder(&bodies).build();
-    let pair = ContactPair {
-        integration: Integration::Gauss,
-        ..ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()))
-    };
+    let mut pair = ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()));
+    pair.nitsche.integration = Integration::Gauss;
     let points = contact_points(&bodies, &map, &[pair])?;
     let highlight = points.len() * 3 / 4;
     contact_sketch(
-        out.join("contact_sketch.svg"),
+        out("contact_sketch.svg"),
         "Slave points projected on a curved master",
         &slave.side_curve(Side::EtaMin),
         &master,
@@ -117,8 +121,8 @@ fn run() -> iga_contact::Result<()> {
         cp.normal[1],
         cp.g0
     );
-    println!("written to {}", out.display());
-    Ok(())
+    println!("written to {}", chapter.dir().display());
+    chapter.finish()
 }
 
 fn main() -> ExitCode {

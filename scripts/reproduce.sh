@@ -8,23 +8,10 @@ export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 echo "==> bash scripts/install-tools.sh"
 bash scripts/install-tools.sh
 
+# Every chapter program (examples/), each regenerating its chapter's folder
+# book/src/generated/<chapter>/ as one set of files.
 echo "==> cargo run --release --bin iga-contact -- reproduce"
 cargo run --release --bin iga-contact -- reproduce
-
-# The Lamé verification of the elasticity chapter and the kernel
-# benchmark are not contact studies; their examples regenerate their
-# chapters' tables and figures.
-echo "==> cargo run --release --example lame"
-cargo run --release --example lame
-
-# The kernel-factorisation comparison of "Starting and correcting BFGS".
-echo "==> cargo run --release --example kernel_factorisation"
-cargo run --release --example kernel_factorisation
-
-# The formulation chapters' figures: basis functions, the disk's control net,
-# the contact sketch.
-echo "==> cargo run --release --example formulation"
-cargo run --release --example formulation
 
 # rustdoc, then the book, with the API pages copied into it.
 bash scripts/build-book.sh

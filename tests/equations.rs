@@ -5,12 +5,11 @@
 
 mod common;
 
-use common::{perturbed_solution, rough};
+use common::{hertz, perturbed_solution, rough, taylor};
 use iga_contact::assembly::displacement_at;
-use iga_contact::benchmarks::{Hertz, Taylor, HERTZ_RADIUS, TAYLOR_PRESSURE};
 use iga_contact::contact::nitsche::{heaviside, local_matrix, negative_part};
 use iga_contact::contact::projection::closest_point;
-use iga_contact::contact::{contact_points, ContactPair, Integration, Master};
+use iga_contact::contact::{contact_points, ContactPair, Integration, Master, Theta};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry;
 use iga_contact::linsolve::mul;
@@ -22,6 +21,10 @@ use std::path::Path;
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
+
+/// The Hertz disk's radius and the Taylor test's pressure, from the scenes.
+const HERTZ_RADIUS: f64 = 0.2;
+const TAYLOR_PRESSURE: f64 = 1e8;
 
 /// The Taylor patch test's exact field (plane stress, uniform σ_yy = −q):
 /// u = (ν q x / E, −q y / E), affine, so the NURBS space holds it exactly.
@@ -41,13 +44,7 @@ fn taylor_exact(p: &Problem) -> Vec<f64> {
 
 #[test]
 fn eq2_the_displacement_field_reproduces_affine_fields_and_the_quadrature_values() {
-    let p = Hertz {
-        degree: 3,
-        elements: 3,
-        ..Hertz::default()
-    }
-    .build()
-    .unwrap();
+    let p = hertz(3, 3, Theta::Incomplete);
     let space = &p.bodies[0].space;
     // d_A = a + G P_A  ⇒  u(ξ, η) = a + G x(ξ, η) on the curved, rational disk.
     let (a, g) = ([1e-3, -2e-3], [[4e-3, -1e-3], [2e-3, 5e-4]]);
@@ -128,13 +125,11 @@ fn disk_over_a_curved_master() -> (NurbsCurve, Vec<iga_contact::contact::Contact
     let bodies = vec![Body {
         name: "disk".into(),
         space: Space::new(patch, None).unwrap(),
-        material: Hertz::material(),
+        material: common::scene("hertz.toml").bodies[0].material,
     }];
     let map = DofMap::builder(&bodies).build();
-    let pair = ContactPair {
-        integration: Integration::Gauss,
-        ..ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()))
-    };
+    let mut pair = ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()));
+    pair.nitsche.integration = Integration::Gauss;
     let points = contact_points(&bodies, &map, &[pair]).unwrap();
     (master, points)
 }
@@ -199,12 +194,7 @@ fn residual_eq7(p: &Problem, full: &[f64], with_boundary_work: bool) -> Vec<f64>
 
 #[test]
 fn eq7_the_exact_contact_state_satisfies_the_boundary_work_form() {
-    let p = Taylor {
-        integration: Integration::Segment,
-        ..Taylor::default()
-    }
-    .build()
-    .unwrap();
+    let p = taylor(Integration::Segment, Theta::Incomplete);
     let full = taylor_exact(&p);
     let scale = norm(&p.rhs);
     let with = norm(&residual_eq7(&p, &full, true)) / scale;
@@ -237,7 +227,7 @@ fn eq8_the_bracket_identity_is_equivalent_to_the_contact_conditions() {
 
 #[test]
 fn eq8_holds_at_the_exact_patch_state_and_fails_once_the_blocks_overlap() {
-    let p = Taylor::default().build().unwrap();
+    let p = taylor(Integration::Segment, Theta::Incomplete);
     let mut full = taylor_exact(&p);
     for cp in &p.points {
         let (sigma_n, jump) = cp.normal_stress_and_jump(&full);
@@ -273,13 +263,7 @@ fn eq8_holds_at_the_exact_patch_state_and_fails_once_the_blocks_overlap() {
 #[test]
 fn eq11_every_contact_point_carries_the_empirical_penalty_of_its_element() {
     for (degree, elements) in [(2, 4), (3, 2)] {
-        let p = Hertz {
-            degree,
-            elements,
-            ..Hertz::default()
-        }
-        .build()
-        .unwrap();
+        let p = hertz(degree, elements, Theta::Incomplete);
         let space = &p.bodies[0].space;
         let young = p.bodies[0].material.young;
         let deg = degree as f64;
@@ -348,14 +332,8 @@ fn fd_column(p: &Problem, u: &[f64], j: usize, h: f64) -> Vec<f64> {
 /// two differ by that point's matrix alone.
 #[test]
 fn eq19_the_secant_matrix_is_the_jacobian_on_each_side_of_a_kink() {
-    for theta in [0.0, 1.0, -1.0] {
-        let p = Hertz {
-            elements: 4,
-            theta,
-            ..Hertz::default()
-        }
-        .build()
-        .unwrap();
+    for theta in Theta::ALL {
+        let p = hertz(2, 4, theta);
         let u0 = perturbed_solution(&p, 1e-3, 5);
         let full0 = p.map.expand(&u0);
         // P(u) is affine in u: dP/du_j = sn_k − γ jn_k for the point's DOF k.

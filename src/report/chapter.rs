@@ -22,7 +22,11 @@ pub struct Program {
 }
 
 /// Every chapter program, in the order of the book.
-pub const PROGRAMS: [Program; 8] = [
+pub const PROGRAMS: [Program; 9] = [
+    Program {
+        example: "formulation",
+        chapter: "formulation",
+    },
     Program {
         example: "lame",
         chapter: "lame",
