@@ -239,7 +239,7 @@ pub struct OutputSpec {
     /// `iterations.csv`: the solver's iteration history.
     pub iterations: bool,
     /// `pressure_profile.csv`: pair, x, y, the bracket P and the pressure
-    /// −[P]₋ on the dense profile ([`crate::post::PressureProfile::dense`]).
+    /// −\[P\]₋ on the dense profile ([`crate::post::PressureProfile::dense`]).
     pub pressure_profile: bool,
     /// `summary.toml`: iterations, forces, and per contact pair p0 and half_width.
     pub summary: bool,

@@ -416,10 +416,10 @@ fn ladder_table(ladder: &[Run]) -> Result<Table> {
     let mut t = Table::new(vec![
         Column::plain("degree", "p"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
-        Column::plain("dofs", "DOFs"),
+        Column::plain("dofs", "DOFs").csv_only(),
         Column::plain("solver", "solver"),
-        Column::plain("iterations", "iterations"),
-        Column::plain("corrections", "corrections"),
+        Column::plain("iterations", "its"),
+        Column::plain("corrections", "corr."),
         Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
         Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(2)),
         Column::new(

@@ -347,10 +347,10 @@ fn main() -> Result<()> {
         Column::new("penalty_factor", "penalty", Unit::None, Format::Sci(0)),
         Column::plain("status", "status"),
         Column::plain("iterations", "its"),
-        Column::plain("corrections", "corr."),
-        Column::plain("skipped_updates", "skipped"),
+        Column::plain("corrections", "corr.").csv_only(),
+        Column::plain("skipped_updates", "skipped").csv_only(),
         Column::new("error_vs_reference", "error", Unit::None, Format::Sci(1)),
-        Column::plain("error_kind", "error kind"),
+        Column::plain("error_kind", "error kind").csv_only(),
         Column::plain("diagnosis", "diagnosis").csv_only(),
     ]);
     for r in &rows {
