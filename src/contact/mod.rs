@@ -9,4 +9,4 @@ pub mod penalty;
 pub mod projection;
 
 pub use pair::{contact_points, ContactPair, ContactPoint, Master};
-pub use params::{Integration, Nitsche, Theta};
+pub use params::{Integration, Nitsche, Penalty, Theta};

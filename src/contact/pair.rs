@@ -1,8 +1,10 @@
 //! Contact pairs and their quadrature points: everything about a point of
 //! Γc that does not depend on the displacement (small deformation).
 
-use super::params::{Integration, Nitsche};
-use super::penalty::{empirical_penalty, PenaltyInputs};
+use super::params::{Integration, Nitsche, Penalty};
+use super::penalty::{
+    empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
+};
 use super::projection::{closest_point, Projection};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
@@ -55,6 +57,10 @@ pub struct ContactPoint {
     /// Initial gap g₀ = (X̄² − X¹)·n¹.
     pub g0: f64,
     pub gamma: f64,
+    /// The trace-inverse constant C_T of the slave element that holds the
+    /// point ([`super::penalty::trace_constant`]); γ below
+    /// [`super::penalty::stability_bound`] of it loses coercivity.
+    pub trace_constant: f64,
     pub theta: f64,
     /// Quadrature weight including the arc length.
     pub weight: f64,
@@ -170,6 +176,7 @@ pub fn contact_points(
             Integration::Segment => projected_master_knots(master.curve(), &slave_curve)?,
         };
         for be in slave.space.boundary(pair.slave_side) {
+            let first = out.len();
             let mut breaks = vec![be.range[0]];
             let eps = 1e-10 * (be.range[1] - be.range[0]);
             breaks.extend(
@@ -187,9 +194,43 @@ pub fn contact_points(
                     }
                 }
             }
+            set_trace_constant(slave, &be, &pair.nitsche, &mut out[first..])?;
         }
     }
     Ok(out)
+}
+
+/// Computes the trace-inverse constant of the slave element under `be` from
+/// its contact points `points` (the solver's own quadrature), stores it in
+/// every point, and with the sharp penalty sets γ from it.
+fn set_trace_constant(
+    slave: &Body,
+    be: &crate::space::BoundaryElement,
+    nitsche: &Nitsche,
+    points: &mut [ContactPoint],
+) -> Result<()> {
+    if points.is_empty() {
+        return Ok(());
+    }
+    let stiffness = crate::assembly::element_stiffness(slave, be.element)?;
+    let el = &slave.space.elements[be.element];
+    let cps: Vec<[f64; 2]> = el
+        .cps
+        .iter()
+        .map(|&a| slave.space.patch.points[a])
+        .collect();
+    let c = trace_constant(
+        &stiffness,
+        &rigid_modes(&cps),
+        points.iter().map(|cp| (cp.weight, cp.sn.as_slice())),
+    )?;
+    for cp in points {
+        cp.trace_constant = c;
+        if nitsche.penalty == Penalty::Sharp {
+            cp.gamma = sharp_penalty(c, cp.theta, nitsche.penalty_factor);
+        }
+    }
+    Ok(())
 }
 
 fn max_degree(b: &Body) -> usize {
@@ -302,6 +343,7 @@ fn make_point(
         normal,
         g0,
         gamma,
+        trace_constant: 0.0, // set per slave element by `set_trace_constant`
         theta: pair.nitsche.theta.value(),
         weight: w * len,
         dofs,

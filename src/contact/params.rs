@@ -94,6 +94,19 @@ pub enum Integration {
     Segment,
 }
 
+/// How the penalty γ of a pair is chosen.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Penalty {
+    /// The paper's empirical formula, Eq. (11).
+    #[default]
+    Empirical,
+    /// The stability bound of the θ-family from each slave element's
+    /// trace-inverse constant ([`super::penalty::sharp_penalty`]); the
+    /// penalty factor is then the safety factor over the bound.
+    Sharp,
+}
+
 /// Largest number of Gauss points per contact element or segment.
 pub const MAX_GAUSS_POINTS: usize = 30;
 
@@ -103,7 +116,10 @@ pub const MAX_GAUSS_POINTS: usize = 30;
 pub struct Nitsche {
     /// θ of Eq. (9); the paper uses 0.
     pub theta: Theta,
-    /// Multiplies the empirical penalty (11); 1 reproduces the paper.
+    /// How γ is chosen: the empirical Eq. (11) (the paper) or the sharp bound.
+    pub penalty: Penalty,
+    /// Multiplies the penalty; 1 reproduces the paper. For the sharp
+    /// penalty it is the safety factor over the stability bound.
     pub penalty_factor: f64,
     pub integration: Integration,
     /// Gauss points per element or segment; `None`: p + 2.
@@ -116,6 +132,7 @@ impl Default for Nitsche {
     fn default() -> Self {
         Self {
             theta: Theta::Incomplete,
+            penalty: Penalty::Empirical,
             penalty_factor: 1.0,
             integration: Integration::Segment,
             gauss_points: None,

@@ -1,10 +1,12 @@
-//! The empirical penalty of Eq. (11).
+//! The empirical penalty of Eq. (11), and the sharp penalty it replaces.
 //!
 //! γ is a *stiffness* here, γ = 0.1 · E · (p+1)(p+d) · (1/h₁ + 1/h₂): it grows
 //! with the modulus and shrinks with the element size, like the largest
 //! eigenvalue of the boundary trace inequality it replaces. (GetFEM and
 //! Chouly–Hild write the reciprocal, a compliance γ₀h, so "small γ" there
 //! means a large one here.)
+
+use crate::error::{Error, Result};
 
 /// Inputs of Eq. (11) at one contact quadrature point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,4 +29,146 @@ pub fn empirical_penalty(inp: PenaltyInputs, factor: f64) -> f64 {
     let p = inp.degree as f64;
     let inv_h = 1.0 / inp.h_slave + inp.h_master.map_or(0.0, |h| 1.0 / h);
     factor * 0.1 * inp.young * (p + 1.0) * (p + DIM) * inv_h
+}
+
+/// The trace-inverse constant of one slave element: the largest λ with
+///
+///   Σ_q w_q σ_n(v)(x_q)² = λ a_e(v, v)
+///
+/// over the displacements v of the element, where a_e is the element's
+/// stiffness `stiffness` (2n × 2n, local order) and each `(w_q, s_q)` is a
+/// contact quadrature point of the element, with σ_n(v)(x_q) = s_q·v (the
+/// first 2n entries of `ContactPoint::sn`). This is the constant C_T of the
+/// local trace inequality ‖σ_n(v)‖²_Γe ≤ C_T a_e(v, v) that the sharp Nitsche
+/// penalty needs, for the quadrature the solver actually uses.
+///
+/// The stiffness is singular on the element's rigid motions `rigid` (2n × 3:
+/// the two translations and the rotation at the control points), where σ_n
+/// vanishes too. With B = W Wᵀ, W = \[√w_q s_q\], λ is the largest
+/// eigenvalue of the small k × k matrix Wᵀ (a_e + R Rᵀ)⁻¹ W (k points): the
+/// rigid modes make the stiffness invertible without changing it on the
+/// functionals. Cost: one dense Cholesky of 2n × 2n and a k × k
+/// eigenproblem, with nalgebra.
+pub fn trace_constant<'a>(
+    stiffness: &nalgebra::DMatrix<f64>,
+    rigid: &nalgebra::DMatrix<f64>,
+    points: impl IntoIterator<Item = (f64, &'a [f64])>,
+) -> Result<f64> {
+    let n = stiffness.nrows();
+    let columns: Vec<nalgebra::DVector<f64>> = points
+        .into_iter()
+        .map(|(w, s)| w.sqrt() * nalgebra::DVector::from_column_slice(&s[..n]))
+        .collect();
+    if columns.is_empty() {
+        return Ok(0.0);
+    }
+    let w = nalgebra::DMatrix::from_columns(&columns);
+    // scale the rigid block to the stiffness so that neither swamps the other
+    let scale = stiffness.diagonal().amax()
+        / rigid
+            .column_iter()
+            .map(|c| c.norm_squared())
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+    let regular = stiffness + scale * rigid * rigid.transpose();
+    let chol = regular.cholesky().ok_or_else(|| {
+        Error::Singular("the element stiffness is singular beyond its rigid motions".into())
+    })?;
+    let small = w.transpose() * chol.solve(&w);
+    let small = 0.5 * (&small + small.transpose());
+    Ok(small.symmetric_eigen().eigenvalues.max().max(0.0))
+}
+
+/// The rigid motions of an element at its control points `points`: the
+/// columns are u = (1, 0), u = (0, 1) and u = (−(y − ȳ), x − x̄), in the
+/// local order of the element stiffness (control point major).
+pub fn rigid_modes(points: &[[f64; 2]]) -> nalgebra::DMatrix<f64> {
+    let n = points.len() as f64;
+    let c = points
+        .iter()
+        .fold([0.0; 2], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+    nalgebra::DMatrix::from_fn(2 * points.len(), 3, |i, k| {
+        let (p, comp) = (points[i / 2], i % 2);
+        match (k, comp) {
+            (0, 0) | (1, 1) => 1.0,
+            (2, 0) => -(p[1] - c[1]),
+            (2, 1) => p[0] - c[0],
+            _ => 0.0,
+        }
+    })
+}
+
+/// The penalty below which the θ-family loses coercivity, for the trace
+/// constant C_T of an element: the contact terms of the tied form add
+/// −(1 + θ)∫σ_n(v)⟦v_n⟧ + ∫γ⟦v_n⟧² to a(v, v), which Young's inequality bounds
+/// below by a(v, v)(1 − (1 + θ)² C_T / (4γ)). So γ > C_T for θ = 1,
+/// γ > C_T/4 for θ = 0, and any γ > 0 for θ = −1 (bound 0).
+pub fn stability_bound(trace_constant: f64, theta: f64) -> f64 {
+    (1.0 + theta).powi(2) / 4.0 * trace_constant
+}
+
+/// The sharp penalty of a point: `safety` times its stability bound, and
+/// for θ = −1 (which has none) `safety` times the bound of θ = 0, the scale
+/// of the contact stiffness.
+pub fn sharp_penalty(trace_constant: f64, theta: f64, safety: f64) -> f64 {
+    safety * stability_bound(trace_constant, theta.max(0.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DMatrix;
+
+    /// The generalised eigenvalue against a brute-force search: for random
+    /// v, B(v, v)/A(v, v) never exceeds λ, and the maximising direction
+    /// attains it.
+    #[test]
+    fn trace_constant_is_the_largest_rayleigh_quotient() {
+        let n = 6;
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        // a stiffness with a two-dimensional null space spanned by r1, r2 …
+        let r = DMatrix::from_fn(n, 2, |_, _| rnd());
+        let m = DMatrix::from_fn(n, n, |_, _| rnd());
+        let p = DMatrix::<f64>::identity(n, n)
+            - &r * (r.transpose() * &r).try_inverse().unwrap() * r.transpose();
+        let a = &p * (&m * m.transpose() + DMatrix::identity(n, n)) * &p;
+        // … and functionals that vanish on it, like σ_n on rigid motions
+        let s: Vec<Vec<f64>> = (0..3)
+            .map(|_| {
+                let v = nalgebra::DVector::from_fn(n, |_, _| rnd());
+                (&p * v).as_slice().to_vec()
+            })
+            .collect();
+        let w = [0.3, 0.5, 0.2];
+        let lambda = trace_constant(
+            &a,
+            &r,
+            w.iter().copied().zip(s.iter().map(|v| v.as_slice())),
+        )
+        .unwrap();
+        // independently: B = W Wᵀ with W = [√w_q s_q], so λ is the largest
+        // eigenvalue of the small Wᵀ A⁺ W, A⁺ the SVD pseudo-inverse
+        let wm = DMatrix::from_fn(n, 3, |i, q| w[q].sqrt() * s[q][i]);
+        let pinv = a.clone().pseudo_inverse(1e-10).unwrap();
+        let small = wm.transpose() * pinv * &wm;
+        let want = small.symmetric_eigen().eigenvalues.max();
+        assert!((lambda - want).abs() <= 1e-9 * want, "{lambda} vs {want}");
+        // and no direction exceeds it: B(v, v) ≤ λ A(v, v)
+        for _ in 0..1000 {
+            let v = &p * nalgebra::DVector::from_fn(n, |_, _| rnd());
+            let bv: f64 = (wm.transpose() * &v).norm_squared();
+            assert!(bv <= lambda * (v.transpose() * &a * &v)[0] * (1.0 + 1e-10));
+        }
+        // the thresholds of the three variants
+        assert_eq!(stability_bound(4.0, 1.0), 4.0);
+        assert_eq!(stability_bound(4.0, 0.0), 1.0);
+        assert_eq!(stability_bound(4.0, -1.0), 0.0);
+        assert_eq!(sharp_penalty(4.0, -1.0, 2.0), 2.0);
+    }
 }
