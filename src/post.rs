@@ -12,7 +12,7 @@ pub mod hertz;
 
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
-use crate::contact::{contact_points, ContactPoint, Integration};
+use crate::contact::{contact_points, ContactPoint, Integration, Role};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linsolve::mul;
@@ -86,7 +86,7 @@ impl PressureProfile {
     }
 
     /// The profile at the given contact points of `problem` (for instance
-    /// the solver's own).
+    /// the solver's own), on each pair's slave side.
     pub fn from_points(problem: &Problem, points: &[ContactPoint], full: &[f64]) -> Self {
         let side_ends = problem
             .pairs
@@ -98,6 +98,7 @@ impl PressureProfile {
             .collect();
         let mut samples: Vec<ProfileSample> = points
             .iter()
+            .filter(|cp| cp.role == Role::Slave)
             .map(|cp| ProfileSample {
                 pair: cp.pair,
                 t: cp.t,
@@ -227,11 +228,17 @@ impl ContactMeasures {
 
 /// The force the masters exert on the slaves, Σ_q w \[P\]₋ n¹ over the
 /// contact points of `problem` (the solver's own quadrature, so that it
-/// balances the load exactly at convergence), per pair.
+/// balances the load exactly at convergence), per pair. A point on the
+/// master side (the mirrored half of the unbiased form) carries the
+/// reaction, so it counts with the opposite sign.
 pub fn contact_resultants(problem: &Problem, full: &[f64]) -> Vec<[f64; 2]> {
     let mut f = vec![[0.0; 2]; problem.pairs.len()];
     for cp in &problem.points {
-        let pm = negative_part(cp.p(full));
+        let sign = match cp.role {
+            Role::Slave => 1.0,
+            Role::Master => -1.0,
+        };
+        let pm = sign * negative_part(cp.p(full));
         f[cp.pair][0] += cp.weight * pm * cp.normal[0];
         f[cp.pair][1] += cp.weight * pm * cp.normal[1];
     }

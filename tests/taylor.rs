@@ -179,3 +179,22 @@ fn the_chapter_program_writes_the_same_files_twice() {
     assert_eq!(lines.len(), 3);
     assert!(lines[1].starts_with("segment,") && lines[2].starts_with("gauss,"));
 }
+
+/// The unbiased form (each block the slave once, half weight) passes the
+/// patch test exactly too, with either modulus in the penalty.
+#[test]
+fn the_unbiased_form_passes_the_patch_test() {
+    use iga_contact::contact::{Modulus, Sides};
+    for theta in Theta::ALL {
+        for modulus in [Modulus::Slave, Modulus::Max] {
+            let scene = taylor_scene(Integration::Segment, theta).with_nitsche(|n| {
+                n.sides = Sides::Unbiased;
+                n.modulus = modulus;
+            });
+            let p = scene.build().unwrap();
+            let s = solve(&p, &scene.solver).unwrap();
+            let e = patch_errors(&p, &s.full, &exact(&p)).unwrap();
+            assert_exact(&e, &format!("unbiased, {modulus:?}, θ = {theta}"));
+        }
+    }
+}

@@ -8,5 +8,5 @@ pub mod params;
 pub mod penalty;
 pub mod projection;
 
-pub use pair::{contact_points, ContactPair, ContactPoint, Master};
-pub use params::{Integration, Nitsche, Penalty, Theta};
+pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
+pub use params::{Integration, Modulus, Nitsche, Penalty, Sides, Theta};

@@ -1,7 +1,7 @@
 //! Contact pairs and their quadrature points: everything about a point of
 //! Γc that does not depend on the displacement (small deformation).
 
-use super::params::{Integration, Nitsche, Penalty};
+use super::params::{Integration, Modulus, Nitsche, Penalty, Sides};
 use super::penalty::{
     empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
 };
@@ -43,11 +43,22 @@ impl ContactPair {
     }
 }
 
+/// Which body of its pair a contact point lies on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// On the pair's slave side (every point of the biased form).
+    Slave,
+    /// On the master side, the slave of the mirrored half of the unbiased form.
+    Master,
+}
+
 /// A contact quadrature point with its linear functionals over the DOFs in
 /// `dofs` (global numbering): σ_n(u) = Σ sn_k u_k and ⟦u_n⟧ = Σ jn_k u_k.
 #[derive(Clone, Debug)]
 pub struct ContactPoint {
     pub pair: usize,
+    /// The body of the pair whose side the point lies on.
+    pub role: Role,
     /// Reference position x¹ on the slave.
     pub x: [f64; 2],
     /// Slave side parameter.
@@ -140,7 +151,8 @@ fn validate(pair: &ContactPair, ip: usize, bodies: &[Body]) -> Result<()> {
 /// Builds every contact quadrature point of every pair.
 ///
 /// Points whose projection falls beyond the end of the master are left
-/// out: no master surface faces them.
+/// out: no master surface faces them. For the unbiased form, each body of
+/// a pair is the slave once, with half the quadrature weight.
 pub fn contact_points(
     bodies: &[Body],
     map: &DofMap,
@@ -149,55 +161,97 @@ pub fn contact_points(
     let mut out = Vec::new();
     for (ip, pair) in pairs.iter().enumerate() {
         validate(pair, ip, bodies)?;
-        let slave = &bodies[pair.slave];
-        let master = match &pair.master {
-            Master::Rigid(c) => MasterGeometry::Rigid(c),
-            Master::Body { body, side } => MasterGeometry::Body {
-                body: *body,
-                side: *side,
-                curve: bodies[*body].space.patch.side_curve(*side),
-                bodies,
-            },
-        };
-        let (young, degree) = match &master {
-            MasterGeometry::Rigid(_) => (slave.material.young, max_degree(slave)),
-            MasterGeometry::Body { body, .. } => {
-                let m = &bodies[*body];
-                (
-                    slave.material.young.max(m.material.young),
-                    max_degree(slave).max(max_degree(m)),
-                )
+        match (&pair.master, pair.nitsche.sides) {
+            (Master::Body { body, side }, Sides::Unbiased) => {
+                one_side(bodies, map, ip, pair, Role::Slave, 0.5, &mut out)?;
+                let mirrored = ContactPair {
+                    slave: *body,
+                    slave_side: *side,
+                    master: Master::Body {
+                        body: pair.slave,
+                        side: pair.slave_side,
+                    },
+                    nitsche: pair.nitsche,
+                };
+                one_side(bodies, map, ip, &mirrored, Role::Master, 0.5, &mut out)?;
             }
-        };
-        let n_gauss = pair.nitsche.points(degree);
-        let slave_curve = slave.space.patch.side_curve(pair.slave_side);
-        let cuts = match pair.nitsche.integration {
-            Integration::Gauss => Vec::new(),
-            Integration::Segment => projected_master_knots(master.curve(), &slave_curve)?,
-        };
-        for be in slave.space.boundary(pair.slave_side) {
-            let first = out.len();
-            let mut breaks = vec![be.range[0]];
-            let eps = 1e-10 * (be.range[1] - be.range[0]);
-            breaks.extend(
-                cuts.iter()
-                    .copied()
-                    .filter(|&t| t > be.range[0] + eps && t < be.range[1] - eps),
-            );
-            breaks.push(be.range[1]);
-            for seg in breaks.windows(2) {
-                for (t, w) in quadrature::on_interval(n_gauss, seg[0], seg[1]) {
-                    if let Some(cp) =
-                        make_point(ip, pair, bodies, map, &master, &be, t, w, young, degree)?
-                    {
-                        out.push(cp);
-                    }
-                }
-            }
-            set_trace_constant(slave, &be, &pair.nitsche, &mut out[first..])?;
+            _ => one_side(bodies, map, ip, pair, Role::Slave, 1.0, &mut out)?,
         }
     }
     Ok(out)
+}
+
+/// The points of `pair` on its slave side, weights scaled by `scale`.
+fn one_side(
+    bodies: &[Body],
+    map: &DofMap,
+    ip: usize,
+    pair: &ContactPair,
+    role: Role,
+    scale: f64,
+    out: &mut Vec<ContactPoint>,
+) -> Result<()> {
+    let slave = &bodies[pair.slave];
+    let master = match &pair.master {
+        Master::Rigid(c) => MasterGeometry::Rigid(c),
+        Master::Body { body, side } => MasterGeometry::Body {
+            body: *body,
+            side: *side,
+            curve: bodies[*body].space.patch.side_curve(*side),
+            bodies,
+        },
+    };
+    let (young, degree) = match &master {
+        MasterGeometry::Rigid(_) => (slave.material.young, max_degree(slave)),
+        MasterGeometry::Body { body, .. } => {
+            let m = &bodies[*body];
+            let young = match pair.nitsche.modulus {
+                Modulus::Slave => slave.material.young,
+                Modulus::Max => slave.material.young.max(m.material.young),
+            };
+            (young, max_degree(slave).max(max_degree(m)))
+        }
+    };
+    let n_gauss = pair.nitsche.points(degree);
+    let slave_curve = slave.space.patch.side_curve(pair.slave_side);
+    let cuts = match pair.nitsche.integration {
+        Integration::Gauss => Vec::new(),
+        Integration::Segment => projected_master_knots(master.curve(), &slave_curve)?,
+    };
+    for be in slave.space.boundary(pair.slave_side) {
+        let first = out.len();
+        let mut breaks = vec![be.range[0]];
+        let eps = 1e-10 * (be.range[1] - be.range[0]);
+        breaks.extend(
+            cuts.iter()
+                .copied()
+                .filter(|&t| t > be.range[0] + eps && t < be.range[1] - eps),
+        );
+        breaks.push(be.range[1]);
+        for seg in breaks.windows(2) {
+            for (t, w) in quadrature::on_interval(n_gauss, seg[0], seg[1]) {
+                let point = Sample {
+                    be: &be,
+                    t,
+                    w: scale * w,
+                };
+                if let Some(cp) =
+                    make_point(ip, pair, role, bodies, map, &master, point, young, degree)?
+                {
+                    out.push(cp);
+                }
+            }
+        }
+        set_trace_constant(slave, &be, &pair.nitsche, &mut out[first..])?;
+    }
+    Ok(())
+}
+
+/// Where on a slave boundary element a point is placed, and its weight.
+struct Sample<'a> {
+    be: &'a crate::space::BoundaryElement,
+    t: f64,
+    w: f64,
 }
 
 /// Computes the trace-inverse constant of the slave element under `be` from
@@ -255,12 +309,11 @@ fn projected_master_knots(master: &NurbsCurve, slave: &NurbsCurve) -> Result<Vec
 fn make_point(
     ip: usize,
     pair: &ContactPair,
+    role: Role,
     bodies: &[Body],
     map: &DofMap,
     master: &MasterGeometry,
-    be: &crate::space::BoundaryElement,
-    t: f64,
-    w: f64,
+    Sample { be, t, w }: Sample,
     young: f64,
     degree: usize,
 ) -> Result<Option<ContactPoint>> {
@@ -338,6 +391,7 @@ fn make_point(
     }
     Ok(Some(ContactPoint {
         pair: ip,
+        role,
         x,
         t,
         normal,

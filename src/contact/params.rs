@@ -107,6 +107,32 @@ pub enum Penalty {
     Sharp,
 }
 
+/// Which sides of a pair between two elastic bodies carry the contact terms.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sides {
+    /// The paper's biased form: the integrals run over the slave side, with
+    /// the slave's normal stress.
+    #[default]
+    Biased,
+    /// Each body is the slave once, with half the weight (Chouly, Mlika &
+    /// Renard 2018): symmetric in the two bodies. A rigid master has only
+    /// one side, so there this is the biased form.
+    Unbiased,
+}
+
+/// Whose Young's modulus E enters the penalty (11) of a point.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Modulus {
+    /// The body whose normal stress the point uses (its slave): the penalty
+    /// and the consistency term then share one stress scale.
+    #[default]
+    Slave,
+    /// max(E¹, E²), the stiffer of the two bodies.
+    Max,
+}
+
 /// Largest number of Gauss points per contact element or segment.
 pub const MAX_GAUSS_POINTS: usize = 30;
 
@@ -118,6 +144,10 @@ pub struct Nitsche {
     pub theta: Theta,
     /// How γ is chosen: the empirical Eq. (11) (the paper) or the sharp bound.
     pub penalty: Penalty,
+    /// Whose modulus enters (11) between two elastic bodies.
+    pub modulus: Modulus,
+    /// One side (the paper's) or both, between two elastic bodies.
+    pub sides: Sides,
     /// Multiplies the penalty; 1 reproduces the paper. For the sharp
     /// penalty it is the safety factor over the stability bound.
     pub penalty_factor: f64,
@@ -133,6 +163,8 @@ impl Default for Nitsche {
         Self {
             theta: Theta::Incomplete,
             penalty: Penalty::Empirical,
+            modulus: Modulus::Slave,
+            sides: Sides::Biased,
             penalty_factor: 1.0,
             integration: Integration::Segment,
             gauss_points: None,
