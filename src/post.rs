@@ -34,6 +34,8 @@ pub struct ProfileSample {
     pub x: [f64; 2],
     /// n¹, the slave normal (pointing towards the master).
     pub normal: [f64; 2],
+    /// The initial gap g₀.
+    pub g0: f64,
     /// The Nitsche bracket P = σ_n + γ g_n; negative where the bodies press.
     pub bracket: f64,
     /// Quadrature weight of the sampling rule, arc length included.
@@ -104,6 +106,7 @@ impl PressureProfile {
                 t: cp.t,
                 x: cp.x,
                 normal: cp.normal,
+                g0: cp.g0,
                 bracket: cp.p(full),
                 weight: cp.weight,
             })
@@ -150,78 +153,102 @@ impl PressureProfile {
 /// The peak pressure and the contact half-width of one contact pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactMeasures {
-    /// p₀: the largest sampled pressure −\[P\]₋.
+    /// p₀: the largest sampled pressure −\[P\]₋ in the main contact zone.
     pub p0: f64,
     /// Where p₀ is attained (reference position on the slave).
     pub peak_at: [f64; 2],
-    /// a: half the length of the contact zone, measured along the contact
-    /// tangent at the peak — or its whole length when the zone reaches an
-    /// end of the slave side (a symmetric half model).
+    /// a: half the length of the main contact zone, measured along the
+    /// contact tangent at the peak — or its whole length when the zone
+    /// reaches an end of the slave side (a symmetric half model).
     pub half_width: f64,
+    /// How many separate contact zones the profile has (1 for a single,
+    /// connected zone; more flags contact away from the main zone).
+    pub zones: usize,
 }
 
 impl ContactMeasures {
     /// Measures a profile of one pair: `samples` in order along the slave
     /// side, whose end points are `side_ends`.
     ///
-    /// The contact zone is where the bracket P is negative. Its ends are the
-    /// sign changes of P, located by linear interpolation of the *signed*
-    /// bracket between neighbouring samples: the clipped pressure cannot be
+    /// The contact zones are the runs of consecutive samples where the
+    /// bracket P is negative. The **main zone** is the one holding the
+    /// loaded sample of least initial gap: where the bodies first touch.
+    /// (A zone elsewhere is real in the discrete solution, but it is not the
+    /// contact the measures describe: for instance a spurious one where the
+    /// stress of a degenerate parametrisation is large; `zones` counts them.)
+    ///
+    /// p₀ is the largest pressure of the main zone. Its ends are the sign
+    /// changes of P, located by linear interpolation of the *signed* bracket
+    /// between neighbouring samples: the clipped pressure cannot be
     /// interpolated, since it is identically 0 beyond the edge, but P is
-    /// smooth there. Positions are measured along the tangent t = n¹⊥ at
-    /// the peak (the common tangent of Hertz's theory). The half-width is
-    /// half the zone's extent along t; if the zone runs up to an end of the
-    /// slave side, that end is taken as the zone's centre — the model is a
+    /// smooth there. Positions are measured along the tangent t = n¹⊥ at the
+    /// peak (the common tangent of Hertz's theory). The half-width is half
+    /// the zone's extent along t; if the zone runs up to an end of the slave
+    /// side, that end is taken as the zone's centre — the model is a
     /// symmetric half, cut through the contact zone, as the paper's Hertz
     /// disk — and the half-width is the extent itself. With no loaded sample
-    /// both measures are 0.
+    /// every measure is 0.
     pub fn of(samples: &[ProfileSample], side_ends: [[f64; 2]; 2]) -> Self {
-        let none = Self {
-            p0: 0.0,
-            peak_at: [0.0; 2],
-            half_width: 0.0,
-        };
-        let Some(peak) = samples
-            .iter()
-            .filter(|s| s.bracket < 0.0)
-            .max_by(|a, b| a.pressure().total_cmp(&b.pressure()))
-        else {
-            return none;
-        };
-        let tangent = [-peak.normal[1], peak.normal[0]];
-        let along = |x: [f64; 2]| (x[0] - peak.x[0]) * tangent[0] + (x[1] - peak.x[1]) * tangent[1];
-        let mut ends = Vec::new();
-        for w in samples.windows(2) {
-            let (a, b) = (&w[0], &w[1]);
-            if (a.bracket < 0.0) != (b.bracket < 0.0) {
-                let s = a.bracket / (a.bracket - b.bracket);
-                ends.push(along([
-                    a.x[0] + s * (b.x[0] - a.x[0]),
-                    a.x[1] + s * (b.x[1] - a.x[1]),
-                ]));
+        let mut zones: Vec<std::ops::Range<usize>> = Vec::new();
+        for (k, s) in samples.iter().enumerate() {
+            if s.bracket < 0.0 {
+                match zones.last_mut() {
+                    Some(z) if z.end == k => z.end = k + 1,
+                    _ => zones.push(k..k + 1),
+                }
             }
         }
-        let side_ends: Vec<f64> = [
-            (samples.first(), side_ends[0]),
-            (samples.last(), side_ends[1]),
-        ]
-        .into_iter()
-        .filter(|(s, _)| s.is_some_and(|s| s.bracket < 0.0))
-        .map(|(_, x)| along(x))
-        .collect();
-        let all = ends.iter().chain(&side_ends);
-        let (lo, hi) = all.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &s| {
-            (l.min(s), h.max(s))
-        });
-        let half_width = match side_ends.as_slice() {
-            // cut by a symmetry line: the side end is the centre
-            [centre] => ends.iter().map(|s| (s - centre).abs()).fold(0.0, f64::max),
-            _ => 0.5 * (hi - lo),
+        let first_touch = samples
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.bracket < 0.0)
+            .min_by(|a, b| a.1.g0.total_cmp(&b.1.g0))
+            .map(|(k, _)| k);
+        let Some(main) = first_touch.and_then(|k| zones.iter().find(|z| z.contains(&k))) else {
+            return Self {
+                p0: 0.0,
+                peak_at: [0.0; 2],
+                half_width: 0.0,
+                zones: 0,
+            };
+        };
+        let peak = samples[main.clone()]
+            .iter()
+            .max_by(|a, b| a.pressure().total_cmp(&b.pressure()))
+            .expect("a zone is not empty");
+        let tangent = [-peak.normal[1], peak.normal[0]];
+        let along = |x: [f64; 2]| (x[0] - peak.x[0]) * tangent[0] + (x[1] - peak.x[1]) * tangent[1];
+        // the zone's end on each side: a sign change, or the end of the side
+        let edge = |inside: usize, outside: Option<usize>, side_end: [f64; 2]| match outside {
+            Some(o) => {
+                let (a, b) = (&samples[inside], &samples[o]);
+                let s = a.bracket / (a.bracket - b.bracket);
+                (
+                    along([
+                        a.x[0] + s * (b.x[0] - a.x[0]),
+                        a.x[1] + s * (b.x[1] - a.x[1]),
+                    ]),
+                    false,
+                )
+            }
+            None => (along(side_end), true),
+        };
+        let lo = edge(main.start, main.start.checked_sub(1), side_ends[0]);
+        let hi = edge(
+            main.end - 1,
+            Some(main.end).filter(|&e| e < samples.len()),
+            side_ends[1],
+        );
+        let half_width = match (lo, hi) {
+            // cut by a symmetry line at one end: that end is the centre
+            ((c, true), (e, false)) | ((e, false), (c, true)) => (e - c).abs(),
+            ((a, _), (b, _)) => 0.5 * (b - a).abs(),
         };
         Self {
             p0: peak.pressure(),
             peak_at: peak.x,
             half_width,
+            zones: zones.len(),
         }
     }
 }
@@ -372,6 +399,7 @@ mod tests {
             t: x,
             x: [x, 0.0],
             normal: [0.0, -1.0],
+            g0: x * x, // first touch at x = 0
             bracket,
             weight: 1.0,
         }
@@ -405,6 +433,26 @@ mod tests {
         let m = ContactMeasures::of(&samples, [[-1.0, 0.0], [1.0, 0.0]]);
         assert!((m.half_width - a).abs() <= 2e-5, "{m:?}");
         assert!(m.peak_at[0].abs() <= 2e-3);
+        assert_eq!(m.zones, 1);
+    }
+
+    /// A spike of pressure far from the first touch (as the stress of a
+    /// degenerate parametrisation can make) is a zone of its own: counted,
+    /// but it changes neither p₀ nor a of the main zone.
+    #[test]
+    fn a_spurious_zone_is_counted_but_not_measured() {
+        let (p0, a) = (2.0, 0.45);
+        let mut samples: Vec<_> = (0..400)
+            .map(|i| {
+                let x = (i as f64 + 0.5) / 400.0;
+                sample(x, -p0 * (1.0 - x * x / (a * a)))
+            })
+            .collect();
+        let clean = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
+        samples[395].bracket = -100.0 * p0;
+        let spiked = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
+        assert_eq!(spiked.zones, 2);
+        assert_eq!((spiked.p0, spiked.half_width), (clean.p0, clean.half_width));
     }
 
     #[test]

@@ -346,6 +346,8 @@ struct PairSummary {
     p0: f64,
     /// Contact half-width, along the contact tangent at the peak.
     half_width: f64,
+    /// Separate contact zones (1: one connected zone).
+    zones: usize,
     /// Force of the master on the slave.
     contact_force: [f64; 2],
 }
@@ -1119,6 +1121,7 @@ impl Scene {
                     PairSummary {
                         p0: m.p0,
                         half_width: m.half_width,
+                        zones: m.zones,
                         contact_force: f,
                     }
                 })
