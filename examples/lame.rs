@@ -331,6 +331,14 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             f.number(&format!("l2_rate_p{p}"), *l2, Format::Fixed(2))?;
             f.number(&format!("energy_rate_p{p}"), *en, Format::Fixed(2))?;
         }
+        if let Some(finest) = group.last() {
+            f.count(&format!("dofs_finest_p{p}"), finest.dofs)?;
+            f.number(
+                &format!("energy_error_finest_p{p}"),
+                finest.energy_error,
+                Format::Pow10(1),
+            )?;
+        }
     }
     chapter.finish()?;
     if !failures.is_empty() {

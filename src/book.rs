@@ -11,6 +11,7 @@ pub fn facts(chapter: &str) -> Result<Facts> {
     Facts::load(generated_root().join(chapter))
 }
 
+// ANCHOR: chapters
 macro_rules! chapters {
     ($($name:ident => $file:literal),* $(,)?) => {
         $(
@@ -38,3 +39,4 @@ chapters! {
     stability => "stability.md",
     scenes => "scenes.md",
 }
+// ANCHOR_END: chapters
