@@ -472,3 +472,35 @@ mod tests {
         assert_eq!(interpolate_pressure(&s, 2.0), 3.0);
     }
 }
+
+/// The stability of the penalty of one pair at a solution: how many contact
+/// points have γ below the bound under which the θ-family loses coercivity
+/// ([`crate::contact::penalty::stability_bound`] of the point's slave
+/// element), in all and among the active points (P ≤ 0).
+///
+/// Below the bound, the discrete problem restricted to an active set need
+/// not be coercive, so a converged solution need not be the only one: two
+/// solvers can reach different "converged" answers. Points below the bound
+/// that stay inactive do not enter the solution's tangent.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PenaltyStability {
+    pub points: usize,
+    pub below: usize,
+    pub active_below: usize,
+}
+
+/// [`PenaltyStability`] of every pair at the displacement `full`.
+pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStability> {
+    let mut out = vec![PenaltyStability::default(); problem.pairs.len()];
+    for cp in &problem.points {
+        let s = &mut out[cp.pair];
+        s.points += 1;
+        if cp.gamma < crate::contact::penalty::stability_bound(cp.trace_constant, cp.theta) {
+            s.below += 1;
+            if cp.p(full) <= 0.0 {
+                s.active_below += 1;
+            }
+        }
+    }
+    out
+}
