@@ -1,0 +1,312 @@
+//! Two elastic cylinders: the program behind the chapter "Two elastic
+//! cylinders". Hertz's own problem, which the paper reduced to a disk on a
+//! rigid plane: two disks of different radii and moduli pressed together,
+//! solved on a mesh ladder with two solvers and measured against the plane
+//! Hertz solution for two bodies and against a converged fine-mesh
+//! reference. Output: `book/src/generated/two_cylinders/`.
+//!
+//! Run it with `cargo run --release --example two_cylinders`.
+
+use iga_contact::assembly::Load;
+use iga_contact::error::{Error, Result};
+use iga_contact::post::hertz::{Cylinder, Hertz};
+use iga_contact::post::{self, relative, PressureProfile};
+use iga_contact::problem::Problem;
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::drawing::{field_cells, Placement};
+use iga_contact::report::plot::{
+    field_figure, line_chart, Axes, LineKind, Polyline, Series, BLACK_INDEX,
+};
+use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
+use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
+use std::f64::consts::PI;
+
+// ANCHOR: setup
+/// Elements per direction of the upper disk; the lower one has twice as
+/// many, so that elements along the contact are of similar size.
+const LADDER: [usize; 5] = [4, 8, 16, 32, 64];
+/// The reference: p = 3 on the finest rung.
+const REFERENCE: (usize, usize) = (3, 64);
+
+/// The scene with degree `p` and `n`² (upper) and (2n)² (lower) elements.
+fn scene(p: usize, n: usize) -> Result<Scene> {
+    let mut s = Scene::shipped("two_cylinders.toml")?
+        .refined("upper", RefineSpec::iga(p, [n, n]))?
+        .refined("lower", RefineSpec::iga(p, [2 * n, 2 * n]))?;
+    s.output = Default::default();
+    Ok(s)
+}
+
+/// Hertz's solution for the scene's two disks under the upper disk's
+/// weight: 1/R = 1/R₁ + 1/R₂, 1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂.
+fn analytic(scene: &Scene) -> Result<Hertz> {
+    let cylinder = |k: usize| match scene.bodies[k].geometry {
+        GeometrySpec::HalfDisk { radius, .. } => Ok(Cylinder::Elastic {
+            radius,
+            material: scene.bodies[k].material,
+        }),
+        ref g => Err(Error::invalid(
+            format!("body[{k}].geometry"),
+            g.kind(),
+            "not a half disk",
+        )),
+    };
+    let (upper, lower) = (cylinder(0)?, cylinder(1)?);
+    let Cylinder::Elastic { radius, .. } = upper else {
+        unreachable!()
+    };
+    let density = scene
+        .loads
+        .iter()
+        .find_map(|l| match l {
+            Load::BodyForce { force, .. } => Some(force[0].hypot(force[1])),
+            _ => None,
+        })
+        .ok_or_else(|| Error::invalid("load", "none", "the upper disk is loaded by its weight"))?;
+    Ok(Hertz::new(upper, lower, density * PI * radius * radius))
+}
+// ANCHOR_END: setup
+
+/// One solve, measured on the dense profile of the upper disk's arc.
+struct Run {
+    elements: usize,
+    solver: &'static str,
+    problem: Problem,
+    solution: Solution,
+    p0: f64,
+    half_width: f64,
+    zones: usize,
+}
+
+fn run(p: usize, n: usize, solver: &'static str, kind: SolverKind) -> Result<Run> {
+    let problem = scene(p, n)?.build()?;
+    let solution = solve(&problem, &SolverOptions::with_kind(kind))?;
+    let m = PressureProfile::dense(&problem, &solution.full)?.measures(0);
+    Ok(Run {
+        elements: n,
+        solver,
+        p0: m.p0,
+        half_width: m.half_width,
+        zones: m.zones,
+        problem,
+        solution,
+    })
+}
+
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("two_cylinders")?;
+    let exact = analytic(&scene(2, 8)?)?;
+
+    // ANCHOR: ladder
+    let mut runs = Vec::new();
+    for n in LADDER {
+        for (name, kind) in [("bfgs", SolverKind::Bfgs), ("newton", SolverKind::Newton)] {
+            runs.push(run(2, n, name, kind)?);
+        }
+    }
+    let reference = run(REFERENCE.0, REFERENCE.1, "newton", SolverKind::Newton)?;
+    // ANCHOR_END: ladder
+
+    // ANCHOR: table
+    let mut table = Table::new(vec![
+        Column::new("elements", "mesh (upper)", Unit::None, Format::Mesh),
+        Column::plain("dofs", "DOFs"),
+        Column::plain("solver", "solver"),
+        Column::plain("iterations", "its"),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(2)),
+        Column::new(
+            "p0_error_hertz",
+            "p₀ vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new(
+            "half_width_error_hertz",
+            "a vs Hertz",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::new(
+            "p0_error_reference",
+            "p₀ vs ref.",
+            Unit::None,
+            Format::SignedPercent(2),
+        )
+        .csv_only(),
+        Column::new(
+            "half_width_error_reference",
+            "a vs ref.",
+            Unit::None,
+            Format::SignedPercent(2),
+        )
+        .csv_only(),
+        Column::plain("zones", "zones").csv_only(),
+    ]);
+    for r in runs.iter().chain(std::iter::once(&reference)) {
+        table.push(vec![
+            r.elements.into(),
+            r.problem.n().into(),
+            r.solver.into(),
+            r.solution.history.len().into(),
+            r.p0.into(),
+            r.half_width.into(),
+            relative(r.p0, exact.p0).into(),
+            relative(r.half_width, exact.half_width).into(),
+            relative(r.p0, reference.p0).into(),
+            relative(r.half_width, reference.half_width).into(),
+            r.zones.into(),
+        ])?;
+    }
+    chapter.table("ladder", &table)?;
+    // ANCHOR_END: table
+
+    // The errors against the reference, p = 2 and BFGS, against the mesh.
+    let bfgs: Vec<&Run> = runs.iter().filter(|r| r.solver == "bfgs").collect();
+    let error = |f: fn(&Run) -> f64, reference: f64| -> Vec<(f64, f64)> {
+        bfgs.iter()
+            .map(|r| (r.elements as f64, relative(f(r), reference).abs()))
+            .collect()
+    };
+    line_chart(
+        chapter.path("errors.svg"),
+        &Axes {
+            title: "Two cylinders, p = 2: error against the reference".into(),
+            x_label: "elements per direction (upper disk)".into(),
+            y_label: "relative error".into(),
+            log_x: true,
+            log_y: true,
+        },
+        &[
+            Series::line("p₀", error(|r| r.p0, reference.p0)).with_markers(),
+            Series::line("a", error(|r| r.half_width, reference.half_width))
+                .with_markers()
+                .dashed(),
+        ],
+    )?;
+
+    // The pressure of the finest p = 2 rung against Hertz's ellipse.
+    let fine = bfgs.last().expect("a ladder");
+    let profile = PressureProfile::dense(&fine.problem, &fine.solution.full)?;
+    let x_max = 1.5 * exact.half_width;
+    let pts = profile
+        .pair(0)
+        .iter()
+        .filter(|s| s.x[0] <= x_max)
+        .map(|s| (s.x[0] * 1e3, s.pressure() * 1e-6))
+        .collect();
+    let ellipse = (0..=300)
+        .map(|i| {
+            let x = x_max * i as f64 / 300.0;
+            (x * 1e3, exact.pressure(x) * 1e-6)
+        })
+        .collect();
+    line_chart(
+        chapter.path("pressure_profile.svg"),
+        &Axes {
+            title: format!(
+                "Contact pressure, p = 2, {0}² on {1}²",
+                fine.elements,
+                2 * fine.elements
+            ),
+            x_label: "x (mm)".into(),
+            y_label: "pressure (MPa)".into(),
+            log_x: false,
+            log_y: false,
+        },
+        &[
+            Series::line("IGA", pts),
+            Series::line("Hertz, two cylinders", ellipse).dashed(),
+        ],
+    )?;
+
+    // The deformed pair, coloured by u_y (true scale), on the 8² rung.
+    let coarse = bfgs.iter().find(|r| r.elements == 8).expect("an 8² rung");
+    let cells = field_cells(
+        &coarse.problem,
+        &coarse.solution.full,
+        4,
+        Placement::Deformed,
+        |q| q.displacement[1] * 1e3,
+    )?;
+    let outlines: Vec<Polyline> = coarse
+        .problem
+        .bodies
+        .iter()
+        .map(|b| {
+            Polyline::new(b.space.patch.outline(64), LineKind::Dashed, BLACK_INDEX)
+                .labelled("undeformed")
+        })
+        .collect();
+    field_figure(
+        chapter.path("deformed.svg"),
+        "Two cylinders: u_y on the deformed bodies (true scale), p = 2",
+        "u_y (mm)",
+        &cells,
+        &outlines,
+    )?;
+
+    // ANCHOR: facts
+    let f = chapter.facts();
+    f.number("hertz_p0_mpa", exact.p0 * 1e-6, Format::Fixed(4))?;
+    f.number("hertz_a_mm", exact.half_width * 1e3, Format::Fixed(3))?;
+    f.number("radius_mm", exact.radius * 1e3, Format::Fixed(1))?;
+    f.number("modulus_mpa", exact.modulus * 1e-6, Format::Fixed(2))?;
+    f.number(
+        "reference_p0_vs_hertz",
+        relative(reference.p0, exact.p0),
+        Format::SignedPercent(1),
+    )?;
+    f.number(
+        "reference_a_vs_hertz",
+        relative(reference.half_width, exact.half_width),
+        Format::SignedPercent(1),
+    )?;
+    f.count("reference_dofs", reference.problem.n())?;
+    let finest = bfgs.last().expect("a ladder");
+    f.number(
+        "finest_p0_vs_reference",
+        relative(finest.p0, reference.p0),
+        Format::SignedPercent(2),
+    )?;
+    f.number(
+        "finest_a_vs_reference",
+        relative(finest.half_width, reference.half_width),
+        Format::SignedPercent(2),
+    )?;
+    f.number(
+        "finest_p0_vs_hertz",
+        relative(finest.p0, exact.p0),
+        Format::SignedPercent(2),
+    )?;
+    f.number(
+        "finest_a_vs_hertz",
+        relative(finest.half_width, exact.half_width),
+        Format::SignedPercent(2),
+    )?;
+    let balance = runs
+        .iter()
+        .map(|r| {
+            let [fx, fy] = post::contact_resultant(&r.problem, &r.solution.full);
+            let [lx, ly] = post::applied_resultant(&r.problem).unwrap_or([f64::NAN; 2]);
+            // the horizontal force of the curved interface goes into the symmetry support
+            let _ = (fx, lx);
+            ((fy + ly) / ly).abs()
+        })
+        .fold(0.0, f64::max);
+    f.number("force_balance", balance, Format::Pow10(0))?;
+    let spread = LADDER
+        .iter()
+        .map(|&n| {
+            let pair: Vec<&Run> = runs.iter().filter(|r| r.elements == n).collect();
+            relative(pair[0].p0, pair[1].p0)
+                .abs()
+                .max(relative(pair[0].half_width, pair[1].half_width).abs())
+        })
+        .fold(0.0, f64::max);
+    f.number("solver_spread", spread, Format::Pow10(0))?;
+    f.count("max_zones", runs.iter().map(|r| r.zones).max().unwrap_or(0))?;
+    // ANCHOR_END: facts
+    chapter.finish()
+}
