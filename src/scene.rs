@@ -29,16 +29,20 @@
 //! ```
 
 use crate::assembly::{load_vector, Load};
-use crate::contact::{ContactPair, Integration, Master};
+use crate::contact::{contact_points, ContactPair, Integration, Master};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
 use crate::material::Material;
 use crate::nurbs::{KnotVector, NurbsPatch, Side};
 use crate::problem::Problem;
-use crate::report::{atomic, plot, vtu};
-use crate::solver::{self, SolverOptions};
+use crate::report::atomic::OutputSet;
+use crate::report::{plot, vtu};
+use crate::resources::{human_bytes, human_count, BodySize, Budget, Estimate, Factoring, PairSize};
+use crate::solver::history::History;
+use crate::solver::{self, Factorisation, SolverOptions};
 use crate::space::Space;
+use crate::wellposed;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt;
@@ -61,6 +65,12 @@ pub struct Scene {
     /// Free text, used in figure titles and the summary.
     #[serde(default)]
     pub title: Option<String>,
+    /// Accept body `quadrature` and contact `gauss_points` below the
+    /// minimum the degree needs ([`wellposed::min_quadrature`],
+    /// [`wellposed::min_contact_gauss_points`]), e.g. to study what
+    /// under-integration does. Off by default.
+    #[serde(default)]
+    pub allow_underintegration: bool,
     /// `[[body]]`: the elastic bodies, referred to by name elsewhere.
     #[serde(default, rename = "body")]
     pub bodies: Vec<BodySpec>,
@@ -273,6 +283,20 @@ impl Default for OutputSpec {
 }
 
 impl OutputSpec {
+    /// The names of the files requested, in the output directory.
+    pub fn file_names(&self) -> Vec<&'static str> {
+        [
+            (self.vtu, files::VTU),
+            (self.iterations, files::ITERATIONS),
+            (self.pressure_profile, files::PRESSURE_PROFILE),
+            (self.summary, files::SUMMARY),
+            (self.figures, files::FIGURE),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect()
+    }
+
     /// True if no output is requested.
     pub fn is_empty(&self) -> bool {
         !(self.vtu || self.iterations || self.pressure_profile || self.summary || self.figures)
@@ -302,7 +326,7 @@ pub struct RunReport {
     pub contact_force: [f64; 2],
     /// Resultant of the external loads (computed only for the summary).
     pub applied_force: Option<[f64; 2]>,
-    /// Files written, in order.
+    /// Files written (committed together), sorted by name.
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
@@ -504,6 +528,30 @@ fn in_range(field: impl Into<String>, v: usize, lo: usize, hi: usize) -> Result<
     }
 }
 
+/// [`wellposed::representable`] for a magnitude implied by the input
+/// value at `field`, showing that value.
+fn check_scale(field: &str, value: f64, implied: f64, what: &str) -> Result<()> {
+    wellposed::representable(field, implied, what).map_err(|e| match e {
+        Error::InvalidInput { field, reason, .. } => Error::invalid(field, show(value), reason),
+        other => other,
+    })
+}
+
+impl BodySpec {
+    /// The degree of the discretised body (the larger of its two directions).
+    fn degree(&self) -> usize {
+        match &self.refine {
+            Some(RefineSpec {
+                degree: Some(p), ..
+            }) => (*p).max(self.geometry.degree()),
+            Some(RefineSpec {
+                lagrange: Some(q), ..
+            }) => *q,
+            _ => self.geometry.degree(),
+        }
+    }
+}
+
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
 }
@@ -518,6 +566,29 @@ impl GeometrySpec {
             GeometrySpec::HalfDisk { .. } => "half_disk",
             GeometrySpec::QuarterAnnulus { .. } => "quarter_annulus",
             GeometrySpec::Nurbs(_) => "nurbs",
+        }
+    }
+
+    /// The diameter of the body, from the geometry's parameters.
+    fn size(&self) -> f64 {
+        let span = |pts: &mut dyn Iterator<Item = [f64; 2]>| {
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for p in pts {
+                for c in 0..2 {
+                    lo[c] = lo[c].min(p[c]);
+                    hi[c] = hi[c].max(p[c]);
+                }
+            }
+            (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+        };
+        match self {
+            GeometrySpec::Rectangle { x0, y0, x1, y1 } => (x1 - x0).hypot(y1 - y0),
+            GeometrySpec::Quadrilateral { corners } => span(&mut corners.iter().copied()),
+            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
+                2.0 * radius
+            }
+            GeometrySpec::QuarterAnnulus { outer_radius, .. } => outer_radius * 2f64.sqrt(),
+            GeometrySpec::Nurbs(n) => span(&mut n.control_points.iter().copied()),
         }
     }
 
@@ -738,6 +809,64 @@ impl Scene {
         })
     }
 
+    /// Refuses fewer quadrature points than `need`, unless the scene allows
+    /// under-integration.
+    fn enough_points(&self, field: String, n: usize, need: usize, why: String) -> Result<()> {
+        if n >= need || self.allow_underintegration {
+            return Ok(());
+        }
+        Err(Error::invalid(
+            field,
+            n,
+            format!(
+                "below the {need} Gauss points {why}; set `allow_underintegration = true` at \
+                 the top of the scene to run it anyway"
+            ),
+        ))
+    }
+
+    /// Checks that the magnitudes of the input, and the displacements they
+    /// imply, are ones double precision can carry ([`wellposed::representable`]).
+    fn validate_scales(&self) -> Result<()> {
+        let names = self.body_index();
+        let mut size = Vec::with_capacity(self.bodies.len());
+        for (i, b) in self.bodies.iter().enumerate() {
+            let f = format!("body[{i}]");
+            let young = b.material.young;
+            wellposed::representable(&format!("{f}.material.young"), young, "the stiffness")?;
+            let l = b.geometry.size();
+            let g = format!("{f}.geometry.{}", b.geometry.kind());
+            wellposed::representable(&g, l, "the body size")?;
+            size.push(l);
+        }
+        for (i, l) in self.loads.iter().enumerate() {
+            let b = names[l.body().as_str()];
+            let (key, value, force) = match l {
+                Load::BodyForce { force, .. } => {
+                    let m = force[0].hypot(force[1]);
+                    ("force", m, m * size[b] * size[b])
+                }
+                Load::Traction { traction, .. } => {
+                    let m = traction[0].hypot(traction[1]);
+                    ("traction", m, m * size[b])
+                }
+                Load::Pressure { pressure, .. } => ("pressure", *pressure, pressure * size[b]),
+            };
+            let field = format!("load[{i}].{}.{key}", load_kind(l));
+            check_scale(&field, value, force, "the load resultant")?;
+            let young = self.bodies[b].material.young;
+            check_scale(&field, value, force / young, "the displacements")?;
+        }
+        for (i, s) in self.supports.iter().enumerate() {
+            let b = names[s.body.as_str()];
+            let young = self.bodies[b].material.young;
+            let field = format!("support[{i}].value");
+            check_scale(&field, s.value, s.value, "the prescribed displacement")?;
+            check_scale(&field, s.value, s.value * young, "the support reactions")?;
+        }
+        Ok(())
+    }
+
     /// Checks every rule a scene must satisfy, naming the key path and value
     /// of the first violation. [`Scene::from_toml_str`] and [`Scene::build`]
     /// both call it.
@@ -773,6 +902,13 @@ impl Scene {
             b.material.validate(&format!("{f}.material"))?;
             if let Some(q) = b.quadrature {
                 in_range(format!("{f}.quadrature"), q, 1, 30)?;
+                let p = b.degree();
+                self.enough_points(
+                    format!("{f}.quadrature"),
+                    q,
+                    wellposed::min_quadrature(p),
+                    format!("a body of degree {p} needs per direction (p + 1: the stiffness is exact on affine elements; fewer leave zero-energy modes)"),
+                )?;
             }
         }
         let names = self.body_index();
@@ -852,8 +988,19 @@ impl Scene {
             positive(format!("{f}.penalty_factor"), c.penalty_factor)?;
             if let Some(n) = c.gauss_points {
                 in_range(format!("{f}.gauss_points"), n, 1, 30)?;
+                let mut p = self.bodies[slave].degree();
+                if let Some(m) = c.master.body.as_ref().and_then(|m| names.get(m.as_str())) {
+                    p = p.max(self.bodies[*m].degree());
+                }
+                self.enough_points(
+                    format!("{f}.gauss_points"),
+                    n,
+                    wellposed::min_contact_gauss_points(p),
+                    format!("a contact side of degree {p} needs (p + 1: the products of two traces are exact on straight sides)"),
+                )?;
             }
         }
+        self.validate_scales()?;
         self.solver.validate("solver")?;
         let o = &self.output;
         in_range(
@@ -884,10 +1031,46 @@ impl Scene {
 // Building and running
 // ---------------------------------------------------------------------------
 
+/// The discretised scene before anything of the size of the system is
+/// assembled: bodies, DOF numbering, loads and contact pairs.
+struct Discrete {
+    bodies: Vec<Body>,
+    map: DofMap,
+    loads: Vec<Load>,
+    pairs: Vec<ContactPair>,
+}
+
 /// A built scene: the problem and the loads it was assembled with.
 struct Built {
     problem: Problem,
     loads: Vec<Load>,
+}
+
+/// What [`Scene::check`] found: the scene is valid, fits the memory
+/// budget, and is well posed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckReport {
+    pub bodies: usize,
+    /// Free degrees of freedom.
+    pub dofs: usize,
+    pub contact_points: usize,
+    /// The resource estimate the budget was checked against.
+    pub estimate: Estimate,
+}
+
+impl fmt::Display for CheckReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "ok ({} bodies, {} free DOFs, {} contact points; a run needs about {} of memory, \
+             {} matrix non-zeros)",
+            self.bodies,
+            self.dofs,
+            self.contact_points,
+            human_bytes(self.estimate.peak_bytes()),
+            human_count(self.estimate.nonzeros)
+        )
+    }
 }
 
 /// True if every control point of `side` coincides with the first: the
@@ -906,12 +1089,48 @@ fn degenerate_side(patch: &NurbsPatch, side: Side) -> bool {
     })
 }
 
+/// An error of the geometry layer, retold with the scene key path of body
+/// `i` (`geometry` the path of its geometry table): library field names
+/// such as `radius` or `patch.control_points[0]` are not scene keys.
+fn in_body(e: Error, i: usize, name: &str, geometry: &str) -> Error {
+    match e {
+        Error::InvalidInput {
+            field,
+            value,
+            reason,
+        } => {
+            let key = field.split(['.', '[']).next().unwrap_or("");
+            let scene_key = matches!(
+                key,
+                "x0" | "y0" | "x1" | "y1" | "center" | "radius" | "inner_radius" | "outer_radius"
+            );
+            let field = if scene_key {
+                format!("{geometry}.{field}")
+            } else {
+                format!("body[{i}].geometry")
+            };
+            Error::invalid(field, value, format!("{reason} (body {name:?})"))
+        }
+        Error::Geometry(m) => Error::Geometry(format!("body[{i}] ({name:?}): {m}")),
+        other => other,
+    }
+}
+
 impl Scene {
+    /// The exact patch of body `i`, errors naming the body.
+    fn exact_patch(&self, i: usize) -> Result<NurbsPatch> {
+        let b = &self.bodies[i];
+        let f = format!("body[{i}].geometry");
+        b.geometry
+            .patch(&f)
+            .map_err(|e| in_body(e, i, &b.name, &format!("{f}.{}", b.geometry.kind())))
+    }
+
     /// The discretised patch of body `i`.
     fn body_patch(&self, i: usize) -> Result<NurbsPatch> {
         let b = &self.bodies[i];
-        let exact = b.geometry.patch(&format!("body[{i}].geometry"))?;
-        match &b.refine {
+        let exact = self.exact_patch(i)?;
+        let refined = match &b.refine {
             None => Ok(exact),
             Some(RefineSpec {
                 degree: Some(p),
@@ -924,18 +1143,131 @@ impl Scene {
                 ..
             }) => geometry::lagrange_interpolant(&exact, *q, *elements),
             Some(_) => unreachable!("validated: degree or lagrange"),
-        }
+        };
+        refined.map_err(|e| match e {
+            Error::InvalidInput { value, reason, .. } => Error::invalid(
+                format!("body[{i}].refine"),
+                value,
+                format!("{reason} (in the refined patch of body {:?})", b.name),
+            ),
+            other => in_body(other, i, &b.name, ""),
+        })
     }
 
-    fn assemble(&self) -> Result<Built> {
+    /// The size of body `i`'s discretisation, from its knot vectors alone.
+    fn body_size(&self, i: usize) -> Result<BodySize> {
+        let b = &self.bodies[i];
+        let exact = self.exact_patch(i)?;
+        // Per direction: basis functions and elements after refinement.
+        let count = |kv: &KnotVector, d: usize| -> (usize, usize, usize) {
+            let spans = kv.spans().len();
+            match &b.refine {
+                None => (kv.n_basis(), spans, kv.degree()),
+                Some(RefineSpec {
+                    degree: Some(p),
+                    elements,
+                    ..
+                }) => {
+                    let p = (*p).max(kv.degree());
+                    let mult = kv.multiplicities();
+                    let raise = p - kv.degree();
+                    let interior: usize = mult[1..mult.len() - 1].iter().map(|m| m + raise).sum();
+                    (
+                        p + 1 + interior + spans * (elements[d] - 1),
+                        spans * elements[d],
+                        p,
+                    )
+                }
+                Some(RefineSpec {
+                    lagrange: Some(q),
+                    elements,
+                    ..
+                }) => (elements[d] * q + 1, elements[d], *q),
+                Some(_) => unreachable!("validated: degree or lagrange"),
+            }
+        };
+        let (n0, e0, p0) = count(&exact.knots[0], 0);
+        let (n1, e1, p1) = count(&exact.knots[1], 1);
+        let (field, value) = match &b.refine {
+            Some(r) => (
+                format!("body[{i}].refine.elements"),
+                format!("{:?}", r.elements),
+            ),
+            None => (
+                format!("body[{i}].geometry"),
+                format!("{n0} × {n1} control points"),
+            ),
+        };
+        Ok(BodySize {
+            field,
+            value,
+            n: [n0, n1],
+            degree: [p0, p1],
+            elements: [e0, e1],
+            side_elements: [e1, e0],
+        })
+    }
+
+    /// Estimates DOFs, non-zeros and peak memory of a run from the scene
+    /// alone, allocating nothing of the size of the discretisation.
+    pub fn estimate(&self) -> Result<Estimate> {
+        self.validate()?;
+        let sizes = (0..self.bodies.len())
+            .map(|i| self.body_size(i))
+            .collect::<Result<Vec<_>>>()?;
+        let names = self.body_index();
+        let pairs = self
+            .contacts
+            .iter()
+            .map(|c| {
+                let s = &sizes[names[c.slave.as_str()]];
+                let along = c.slave_side.along();
+                let mut degree = s.degree[0].max(s.degree[1]);
+                let mut coupled = s.element_points();
+                let mut master_breaks = 2.0;
+                if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
+                    let m = &sizes[names[name.as_str()]];
+                    degree = degree.max(m.degree[0].max(m.degree[1]));
+                    coupled += m.element_points();
+                    master_breaks = m.elements[side.along()] as f64 + 1.0;
+                }
+                let g = c.gauss_points.unwrap_or(degree + 2) as f64;
+                PairSize {
+                    points: g * (s.elements[along] as f64 + master_breaks),
+                    dofs_per_point: 2.0 * coupled,
+                }
+            })
+            .collect();
+        let lu = self.contacts.iter().any(|c| c.theta > 0.0)
+            || self.solver.factorisation == Factorisation::Lu;
+        let vtu = self.output.vtu.then_some(self.output.vtu_subdivisions);
+        let factoring = if lu {
+            Factoring::Lu
+        } else {
+            Factoring::Cholesky
+        };
+        Ok(Estimate::new(sizes, pairs, vtu, factoring))
+    }
+
+    /// Refines every body and checks its map at every quadrature point
+    /// (naming the body where it folds), numbers the DOFs and resolves
+    /// loads and contact pairs; assembles nothing.
+    fn discretise(&self) -> Result<Discrete> {
         self.validate()?;
         let names = self.body_index();
         let idx = |name: &str| names[name];
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (i, b) in self.bodies.iter().enumerate() {
+            let space = Space::new(self.body_patch(i)?, b.quadrature)
+                .map_err(|e| in_body(e, i, &b.name, ""))?;
+            for e in &space.elements {
+                space
+                    .quadrature(e)
+                    .map_err(|e| in_body(e, i, &b.name, ""))?;
+            }
             bodies.push(Body {
                 name: b.name.clone(),
-                space: Space::new(self.body_patch(i)?, b.quadrature)?,
+                space,
                 material: b.material,
             });
         }
@@ -992,85 +1324,138 @@ impl Scene {
                 gauss_points: c.gauss_points,
             });
         }
+        Ok(Discrete {
+            bodies,
+            map,
+            loads,
+            pairs,
+        })
+    }
+
+    fn assemble(&self) -> Result<Built> {
+        let Discrete {
+            bodies,
+            map,
+            loads,
+            pairs,
+        } = self.discretise()?;
         let problem = Problem::new(bodies, map, &loads, pairs)?;
+        wellposed::check_rigid_modes(&problem.bodies, &problem.map, &problem.points)?;
         Ok(Built { problem, loads })
     }
 
-    /// Validates the scene and assembles its [`Problem`] (no solve).
+    /// Validates the scene and assembles its [`Problem`] (no solve),
+    /// rejecting rigid motions nothing holds
+    /// ([`wellposed::check_rigid_modes`]).
     pub fn build(&self) -> Result<Problem> {
         Ok(self.assemble()?.problem)
+    }
+
+    /// Everything [`Scene::run`] checks before it solves — validity, the
+    /// resource estimate against `budget`, the geometric map of every
+    /// body at every quadrature point, the contact points and the rigid
+    /// modes — without assembling or solving anything.
+    pub fn check(&self, budget: &Budget) -> Result<CheckReport> {
+        let estimate = self.estimate()?;
+        estimate.check(budget, "output.vtu_subdivisions")?;
+        let d = self.discretise()?;
+        let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
+        wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
+        Ok(CheckReport {
+            bodies: d.bodies.len(),
+            dofs: d.map.n_free(),
+            contact_points: points.len(),
+            estimate,
+        })
+    }
+
+    /// Builds, solves, and writes the outputs requested in `[output]` into
+    /// `out_dir`, within the default memory budget
+    /// ([`Budget::from_machine`]). See [`Scene::run_within`].
+    pub fn run(&self, out_dir: impl AsRef<Path>) -> Result<RunReport> {
+        self.run_within(out_dir, &Budget::from_machine())
     }
 
     /// Builds, solves, and writes the outputs requested in `[output]` into
     /// `out_dir` — nothing else: a scene without outputs writes no file and
     /// does not even create the directory.
     ///
-    /// Every output is computed in memory before the first file is
-    /// written, and every file is written atomically, so a failed run
-    /// (invalid scene, solver not converged, bad figure data) leaves
-    /// earlier results untouched and no partial files.
-    pub fn run(&self, out_dir: impl AsRef<Path>) -> Result<RunReport> {
+    /// Before any work: the scene is validated, its estimated peak memory
+    /// is checked against `budget`, and the output directory is checked
+    /// (it must be creatable and replaceable). The outputs are one
+    /// transaction ([`OutputSet`]): staged beside `out_dir` and swapped in
+    /// as a whole, so a failed or interrupted run leaves the earlier
+    /// results exactly as they were.
+    pub fn run_within(&self, out_dir: impl AsRef<Path>, budget: &Budget) -> Result<RunReport> {
         let start = Instant::now();
-        let out_dir = out_dir.as_ref();
+        self.estimate()?.check(budget, "output.vtu_subdivisions")?;
+        let o = &self.output;
+        let set = if o.is_empty() {
+            None
+        } else {
+            Some(OutputSet::begin_expecting(out_dir, &o.file_names())?)
+        };
         let Built { problem, loads } = self.assemble()?;
         let solution = solver::solve(&problem, &self.solver)?;
         let full = &solution.full;
-        let contact_force = problem.contact_force(full);
+        let contact_force = problem.contact_force(full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
         let history = &solution.history;
-        let o = &self.output;
         let title = self.title.as_deref().unwrap_or("scene");
 
         let applied_force = if o.summary {
-            Some(applied_force(&problem.bodies, &loads)?)
+            Some(applied_force(&problem.bodies, &loads)?.map(no_negative_zero))
         } else {
             None
         };
+        let files = match set {
+            None => Vec::new(),
+            Some(mut set) => {
+                let outputs = Outputs {
+                    title,
+                    contact_force,
+                    applied_force,
+                    active_points,
+                };
+                self.stage_outputs(&mut set, &problem, &solution, &outputs)?;
+                set.commit()?
+            }
+        };
+        Ok(RunReport {
+            dofs: problem.n(),
+            iterations: history.len(),
+            corrections: history.corrections(),
+            active_points,
+            contact_points: problem.points.len(),
+            contact_force,
+            applied_force,
+            files,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Computes and stages every requested output.
+    fn stage_outputs(
+        &self,
+        set: &mut OutputSet,
+        problem: &Problem,
+        solution: &solver::Solution,
+        out: &Outputs,
+    ) -> Result<()> {
+        let Outputs {
+            title,
+            contact_force,
+            applied_force,
+            active_points,
+        } = *out;
+        let o = &self.output;
+        let full = &solution.full;
+        let history = &solution.history;
         let profile = if o.pressure_profile || o.figures {
-            pressure_profile(&problem, full)
+            pressure_profile(problem, full)
         } else {
             Vec::new()
         };
-
-        // Everything textual, in memory first.
-        let mut texts: Vec<(&str, String)> = Vec::new();
-        if o.iterations {
-            texts.push((files::ITERATIONS, history.to_csv()));
-        }
-        if o.pressure_profile {
-            let mut s = String::from("pair,x,y,pressure\n");
-            for (pair, x, y, p) in &profile {
-                s.push_str(&format!("{pair},{x:.12e},{y:.12e},{p:.12e}\n"));
-            }
-            texts.push((files::PRESSURE_PROFILE, s));
-        }
-        if o.vtu {
-            let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
-            mesh.validate()?;
-            texts.push((files::VTU, mesh.to_xml()));
-        }
-        if let Some(applied_force) = applied_force {
-            let summary = Summary {
-                title,
-                dofs: problem.n(),
-                iterations: history.len(),
-                corrections: history.corrections(),
-                relative_residual: history.last_relative_residual(),
-                contact_points: problem.points.len(),
-                active_points,
-                contact_force,
-                applied_force,
-                solver: solver_table(&self.solver),
-            };
-            let text = toml::to_string(&summary)
-                .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;
-            texts.push((files::SUMMARY, text));
-        }
-
-        let mut written = Vec::new();
-        // The figure validates its data before drawing and is the only
-        // output rendered straight to disk, so it goes first: if it fails,
-        // nothing has been written.
         if o.figures {
             let pairs = self.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
@@ -1095,27 +1480,68 @@ impl Scene {
                 log_x: false,
                 log_y: false,
             };
-            let path = out_dir.join(files::FIGURE);
-            plot::line_chart(&path, &axes, &series)?;
-            written.push(path);
+            plot::line_chart(set.dir().join(files::FIGURE), &axes, &series)?;
         }
-        for (name, text) in texts {
-            let path = out_dir.join(name);
-            atomic::write_text(&path, &text)?;
-            written.push(path);
+        if o.iterations {
+            set.stage(files::ITERATIONS, history.to_csv().as_bytes())?;
         }
-        Ok(RunReport {
-            dofs: problem.n(),
-            iterations: history.len(),
-            corrections: history.corrections(),
-            active_points,
-            contact_points: problem.points.len(),
-            contact_force,
-            applied_force,
-            files: written,
-            seconds: start.elapsed().as_secs_f64(),
-        })
+        if o.pressure_profile {
+            let mut s = String::from("pair,x,y,pressure\n");
+            for (pair, x, y, p) in &profile {
+                s.push_str(&format!("{pair},{x:.12e},{y:.12e},{p:.12e}\n"));
+            }
+            set.stage(files::PRESSURE_PROFILE, s.as_bytes())?;
+        }
+        if o.vtu {
+            let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
+            mesh.validate()?;
+            let xml = mesh.to_xml();
+            drop(mesh);
+            set.stage(files::VTU, xml.as_bytes())?;
+        }
+        if let Some(applied_force) = applied_force {
+            let summary = Summary {
+                title,
+                dofs: problem.n(),
+                iterations: history.len(),
+                corrections: history.corrections(),
+                relative_residual: no_negative_zero(final_relative_residual(history)),
+                contact_points: problem.points.len(),
+                active_points,
+                contact_force,
+                applied_force,
+                solver: solver_table(&self.solver),
+            };
+            let text = toml::to_string(&summary)
+                .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;
+            set.stage(files::SUMMARY, text.as_bytes())?;
+        }
+        Ok(())
     }
+}
+
+/// The figures of a run that go into its outputs.
+struct Outputs<'a> {
+    title: &'a str,
+    contact_force: [f64; 2],
+    applied_force: Option<[f64; 2]>,
+    active_points: usize,
+}
+
+/// The relative residual a converged run ends with; a run that needed no
+/// iteration (nothing to balance: zero load) ends with 0, not 1.
+fn final_relative_residual(h: &History) -> f64 {
+    match h.rows.last() {
+        Some(r) => r.relative_residual,
+        None if h.initial_residual == 0.0 => 0.0,
+        None => 1.0,
+    }
+}
+
+/// `v` with a negative zero turned into +0 (IEEE: −0 + 0 = +0), so that no
+/// output shows `-0`.
+fn no_negative_zero(v: f64) -> f64 {
+    v + 0.0
 }
 
 /// (pair, x, y, pressure) at every contact point, sorted by pair and x.
@@ -1123,7 +1549,10 @@ fn pressure_profile(problem: &Problem, full: &[f64]) -> Vec<(usize, f64, f64, f6
     let mut rows: Vec<(usize, f64, f64, f64)> = problem
         .pressures(full)
         .into_iter()
-        .map(|(cp, p)| (cp.pair, cp.x[0], cp.x[1], p))
+        .map(|(cp, p)| {
+            let z = no_negative_zero;
+            (cp.pair, z(cp.x[0]), z(cp.x[1]), z(p))
+        })
         .collect();
     rows.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
     rows

@@ -3,6 +3,7 @@
 //! benchmark constructors, and lean, atomic output.
 
 use iga_contact::benchmarks::{Hertz, Taylor};
+use iga_contact::report::atomic::{read_manifest, MANIFEST};
 use iga_contact::scene::{files, Scene};
 use iga_contact::solver::{self, SolverOptions};
 use iga_contact::Error;
@@ -119,10 +120,12 @@ fn tmp(name: &str) -> PathBuf {
     dir
 }
 
+/// The files of an output directory, without the manifest of the set.
 fn listing(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
         .map(|rd| {
             rd.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n != MANIFEST)
                 .collect()
         })
         .unwrap_or_default();
@@ -282,6 +285,8 @@ fn hertz_run_writes_everything_it_asks_for() {
     expected.sort();
     assert_eq!(listing(&dir), expected);
     assert_eq!(report.files.len(), 5);
+    // The manifest lists exactly the committed files.
+    assert_eq!(read_manifest(&dir).unwrap(), expected);
     // Equilibrium: the floor carries the applied load.
     let applied = report.applied_force.unwrap();
     assert!((report.contact_force[1] + applied[1]).abs() < 1e-8 * applied[1].abs());

@@ -217,7 +217,11 @@ fn elevate(knots: &[f64], p: usize, pw: &Coefs, t: usize) -> (Vec<f64>, Coefs) {
         let oldr = r;
         r = p as isize - mul as isize;
         let lbz = if oldr > 0 { (oldr as usize + 2) / 2 } else { 1 };
-        let rbz = if r > 0 { ph - (r as usize).div_ceil(2) } else { ph };
+        let rbz = if r > 0 {
+            ph - (r as usize).div_ceil(2)
+        } else {
+            ph
+        };
         if r > 0 {
             // insert ub r times to cut out the Bézier segment [ua, ub]
             let numer = ub - ua;
