@@ -248,6 +248,12 @@ fn reproduce(only: Option<String>) -> Result<(), Failure> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // A file-size limit (`ulimit -f`) makes writes fail with EFBIG, reported
+    // as an i/o error, instead of killing the process with SIGXFSZ.
+    // SAFETY: setting a signal's disposition to "ignore" has no preconditions.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
     if let Err(e) = atomic::install_signal_cleanup() {
         eprintln!("error: {}", one_line(&e.to_string()));
         return ExitCode::from(1);

@@ -1225,16 +1225,20 @@ impl Scene {
                 let mut degree = s.degree[0].max(s.degree[1]);
                 let mut coupled = s.element_points();
                 let mut master_breaks = 2.0;
+                let mut trace = s.n[along] as f64;
                 if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
                     let m = &sizes[names[name.as_str()]];
                     degree = degree.max(m.degree[0].max(m.degree[1]));
                     coupled += m.element_points();
                     master_breaks = m.elements[side.along()] as f64 + 1.0;
+                    trace += m.n[side.along()] as f64;
                 }
                 let g = c.gauss_points.unwrap_or(degree + 2) as f64;
+                let twice = if c.theta != 0.0 { 2.0 } else { 1.0 };
                 PairSize {
                     points: g * (s.elements[along] as f64 + master_breaks),
                     dofs_per_point: 2.0 * coupled,
+                    rank: twice * 2.0 * trace,
                 }
             })
             .collect();
