@@ -592,6 +592,21 @@ impl GeometrySpec {
         }
     }
 
+    /// The key that sets [`GeometrySpec::size`], and its value if a number.
+    fn size_key(&self) -> (&'static str, Option<f64>) {
+        match self {
+            GeometrySpec::Rectangle { x1, .. } => ("x1", Some(*x1)),
+            GeometrySpec::Quadrilateral { .. } => ("corners", None),
+            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
+                ("radius", Some(*radius))
+            }
+            GeometrySpec::QuarterAnnulus { outer_radius, .. } => {
+                ("outer_radius", Some(*outer_radius))
+            }
+            GeometrySpec::Nurbs(_) => ("control_points", None),
+        }
+    }
+
     /// The largest degree of the exact (unrefined) patch.
     fn degree(&self) -> usize {
         match self {
@@ -835,8 +850,9 @@ impl Scene {
             let young = b.material.young;
             wellposed::representable(&format!("{f}.material.young"), young, "the stiffness")?;
             let l = b.geometry.size();
-            let g = format!("{f}.geometry.{}", b.geometry.kind());
-            wellposed::representable(&g, l, "the body size")?;
+            let (key, value) = b.geometry.size_key();
+            let g = format!("{f}.geometry.{}.{key}", b.geometry.kind());
+            check_scale(&g, value.unwrap_or(l), l, "the body size")?;
             size.push(l);
         }
         for (i, l) in self.loads.iter().enumerate() {

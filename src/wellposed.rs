@@ -38,7 +38,7 @@ pub fn min_contact_gauss_points(degree: usize) -> usize {
 }
 
 /// Magnitudes of input, and of what they imply, must lie in
-/// [`MIN_SCALE`, `MAX_SCALE`]: the solvers square residual entries (norms)
+/// [`MIN_SCALE`] ..= [`MAX_SCALE`]: the solvers square residual entries (norms)
 /// and multiply stiffness by displacement, so a scale beyond about 1e±154
 /// overflows or underflows, and the margin keeps the geometric factors
 /// (derivatives over small elements, the penalty p²E/h) in range too.

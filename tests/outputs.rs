@@ -4,7 +4,7 @@
 //! or exactly the new one; staging left by a kill is removed by the next
 //! run; and problems with the output location are reported before any work.
 
-use iga_contact::report::atomic::{read_manifest, OutputSet, MANIFEST};
+use iga_contact::report::atomic::{self, read_manifest, OutputSet, MANIFEST};
 use iga_contact::Error;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -21,36 +21,15 @@ fn workdir(name: &str) -> PathBuf {
     dir
 }
 
-/// Every file below `dir` (manifest included) with its bytes.
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fn walk(base: &Path, dir: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
-        let Ok(rd) = std::fs::read_dir(dir) else {
-            return;
-        };
-        for e in rd.flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                walk(base, &p, out);
-            } else {
-                let rel = p.strip_prefix(base).unwrap().to_string_lossy().into_owned();
-                out.insert(rel, std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(dir, dir, &mut out);
-    out
+    atomic::snapshot(dir).unwrap()
 }
 
-/// Entries beside `target` that belong to staging (directories, locks).
+/// Staging entries beside `target`, by name.
 fn staging_left(target: &Path) -> Vec<String> {
-    let name = target.file_name().unwrap().to_string_lossy().into_owned();
-    let prefix = format!(".{name}.staging-");
-    std::fs::read_dir(target.parent().unwrap())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with(&prefix))
+    atomic::staging_entries(target)
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect()
 }
 
@@ -472,6 +451,15 @@ fn concurrent_runs_into_one_directory_never_mix() {
     eprintln!("final sets: {seen:?}");
 }
 
+/// `iga-contact ARGS` in `dir`.
+fn cli(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
 #[test]
 fn an_output_path_that_is_a_file_is_refused_before_the_solve() {
     let dir = workdir("fail-fast");
@@ -479,44 +467,22 @@ fn an_output_path_that_is_a_file_is_refused_before_the_solve() {
     // checked after the solve, the solver's error would be reported.
     let text = scene_text("doomed", 8, 2) + "\n[solver]\nmax_iter = 1\n";
     std::fs::write(dir.join("doomed.toml"), text).unwrap();
-    let o = Command::new(BIN)
-        .args(["run", "doomed.toml", "--out", "results"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "the solve fails: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let o = cli(&dir, &["run", "doomed.toml", "--out", "results"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "the solve fails: {err}");
     assert!(
         !dir.join("results").exists(),
-        "a failed run created its output directory"
+        "a failed run created its directory"
     );
     std::fs::write(dir.join("taken"), "a file").unwrap();
-    let o = Command::new(BIN)
-        .args(["run", "doomed.toml", "--out", "taken"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2));
-    let line = single_error_line(&o);
-    assert!(
-        line.contains("`taken`") && line.contains("is an existing file, not a directory"),
-        "{line}"
-    );
+    for (out, says) in [
+        ("taken", "`taken` is an existing file, not a directory"),
+        ("taken/run", "`taken` is an existing file, not a directory"),
+    ] {
+        let o = cli(&dir, &["run", "doomed.toml", "--out", out]);
+        assert_eq!(o.status.code(), Some(2), "--out {out}");
+        let line = single_error_line(&o);
+        assert!(line.contains(says), "{line}");
+    }
     assert_eq!(std::fs::read(dir.join("taken")).unwrap(), b"a file");
-    // The same for a parent in the way.
-    let o = Command::new(BIN)
-        .args(["run", "doomed.toml", "--out", "taken/run"])
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2));
-    let line = single_error_line(&o);
-    assert!(
-        line.contains("`taken` is an existing file, not a directory"),
-        "{line}"
-    );
 }

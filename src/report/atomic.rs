@@ -120,7 +120,7 @@ impl OutputSet {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        let created = create_parent(&parent)?;
+        let created = create_parent(&parent, &target)?;
         let known: Vec<String> = names.iter().map(|s| s.to_string()).collect();
         // Fail fast: a file in the way, or foreign content (judged by the
         // declared names now, by the staged ones again at the commit).
@@ -128,26 +128,33 @@ impl OutputSet {
         target_state(&target, declared)?;
         let _guard = DirLock::acquire(&parent)?;
         remove_stale(&parent, &name, &target);
+        static SERIAL: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
         let id = format!(
-            "{}-{}",
+            "{}-{}-{}",
             std::process::id(),
             std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |d| d.as_nanos())
+                .map_or(0, |d| d.as_nanos()),
+            SERIAL.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
         );
         let staging = parent.join(format!(".{name}.staging-{id}"));
         let lock_path = parent.join(format!(".{name}.staging-{id}.lock"));
         let mut registry = active();
-        let lock = File::create(&lock_path).map_err(|e| {
+        let unwritable = |e: std::io::Error| {
             output_error(
-                &parent,
-                format!("cannot be written ({e}); outputs are staged beside the target"),
+                &target,
+                format!(
+                    "cannot be prepared: its parent `{}` is not writable ({e}), and outputs are \
+                     staged beside the target",
+                    parent.display()
+                ),
             )
-        })?;
+        };
+        let lock = File::create(&lock_path).map_err(unwritable)?;
         lock_exclusive(&lock, false).map_err(|e| io_error(&lock_path, e))?;
         if let Err(e) = std::fs::create_dir(&staging) {
             let _ = std::fs::remove_file(&lock_path);
-            return Err(output_error(&parent, format!("cannot be written ({e})")));
+            return Err(unwritable(e));
         }
         registry.push((staging.clone(), lock_path.clone()));
         drop(registry);
@@ -305,7 +312,7 @@ fn resolve(target: &Path) -> Result<PathBuf> {
 
 /// Creates the parent directory, explaining a file in the way. Returns the
 /// topmost directory it created, if any.
-fn create_parent(parent: &Path) -> Result<Option<PathBuf>> {
+fn create_parent(parent: &Path, target: &Path) -> Result<Option<PathBuf>> {
     let mut top = None;
     let mut p = parent.to_path_buf();
     while !p.as_os_str().is_empty() && std::fs::symlink_metadata(&p).is_err() {
@@ -322,7 +329,7 @@ fn create_parent(parent: &Path) -> Result<Option<PathBuf>> {
             if let Ok(m) = std::fs::metadata(&p) {
                 if !m.is_dir() {
                     return Err(output_error(
-                        parent,
+                        target,
                         format!(
                             "cannot be created: `{}` is an existing file, not a directory",
                             p.display()
@@ -331,7 +338,7 @@ fn create_parent(parent: &Path) -> Result<Option<PathBuf>> {
                 }
             }
         }
-        return Err(output_error(parent, format!("cannot be created ({e})")));
+        return Err(output_error(target, format!("cannot be created ({e})")));
     }
     Ok(top)
 }
@@ -414,6 +421,47 @@ pub fn read_manifest(dir: &Path) -> Option<Vec<String>> {
     let text = std::fs::read_to_string(dir.join(MANIFEST)).ok()?;
     let m: Manifest = toml::from_str(&text).ok()?;
     Some(m.file.into_iter().map(|e| e.name).collect())
+}
+
+/// Every file below `dir` (relative, `/`-separated, the manifest included)
+/// with its bytes: what a reader of the directory sees, for comparing two
+/// states of an output directory byte for byte.
+pub fn snapshot(dir: &Path) -> std::io::Result<std::collections::BTreeMap<String, Vec<u8>>> {
+    let mut out = std::collections::BTreeMap::new();
+    if !dir.exists() {
+        return Ok(out);
+    }
+    for (rel, _) in list_files(dir)? {
+        let bytes = std::fs::read(dir.join(&rel))?;
+        out.insert(rel, bytes);
+    }
+    if let Ok(m) = std::fs::read(dir.join(MANIFEST)) {
+        out.insert(MANIFEST.to_string(), m);
+    }
+    Ok(out)
+}
+
+/// Staging directories and lock files beside `target` (of living or dead
+/// output sets): empty once every set has ended and a later one cleaned up.
+pub fn staging_entries(target: &Path) -> Vec<PathBuf> {
+    let Some(name) = target.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+        return Vec::new();
+    };
+    let parent = match target.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let prefix = format!(".{name}.staging-");
+    let mut out: Vec<PathBuf> = std::fs::read_dir(&parent)
+        .map(|rd| {
+            rd.flatten()
+                .filter(|e| e.file_name().to_string_lossy().starts_with(&prefix))
+                .map(|e| e.path())
+                .collect()
+        })
+        .unwrap_or_default();
+    out.sort();
+    out
 }
 
 /// A relative path with plain components only.
