@@ -413,8 +413,8 @@ impl Tally {
         if o.code == Some(1) {
             let m = o.stderr.trim();
             let m = m.split_once(".toml: ").map_or(m, |(_, rest)| rest);
-            let m: String = m.chars().take(110).collect();
-            *self.failures.entry(m).or_default() += 1;
+            let m: String = m.chars().take(90).collect();
+            *self.failures.entry(format!("{what}: `{m}…`")).or_default() += 1;
         }
         if o.timed_out {
             self.stopped.push(what.to_string());
@@ -925,9 +925,14 @@ fn main() {
     for u in &tally.unclean {
         let _ = writeln!(md, "- {u}");
     }
-    md.push_str("The clean failures (exit 1), by message:\n\n");
+    md.push_str("The clean failures (exit 1):\n\n");
     for (m, n) in &tally.failures {
-        let _ = writeln!(md, "- {n} × `{m}`");
+        let times = if *n > 1 {
+            format!(" ({n} ×)")
+        } else {
+            String::new()
+        };
+        let _ = writeln!(md, "- {m}{times}");
     }
     md.push_str(
         "\nThe runs stopped by the harness (accepted by the estimate, still computing):\n\n",

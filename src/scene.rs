@@ -1359,8 +1359,11 @@ impl Scene {
             loads,
             pairs,
         } = self.discretise()?;
+        // Before the assembly: the contact points cost only the boundary.
+        let points = contact_points(&bodies, &map, &pairs)?;
+        wellposed::check_rigid_modes(&bodies, &map, &points)?;
+        drop(points);
         let problem = Problem::new(bodies, map, &loads, pairs)?;
-        wellposed::check_rigid_modes(&problem.bodies, &problem.map, &problem.points)?;
         Ok(Built { problem, loads })
     }
 

@@ -2,7 +2,7 @@
 //! that takes given values at given points.
 //!
 //! When the points satisfy the Schoenberg–Whitney condition (N_k(τ_k) ≠ 0),
-//! the collocation matrix B[k][i] = N_i(τ_k) is banded — row k holds at most
+//! the collocation matrix `B[k][i] = N_i(τ_k)` is banded — row k holds at most
 //! p + 1 consecutive non-zeros, and the diagonal lies among them — and
 //! totally positive, so Gaussian elimination without pivoting is stable
 //! (de Boor, 1976). Elimination inside the band costs O(n p²) time and
