@@ -30,6 +30,11 @@ pub enum Error {
     /// The nonlinear iteration stopped without meeting its tolerances.
     #[error("{reason} after {} iterations (last relative residual {:.3e})", history.len(), history.last_relative_residual())]
     NotConverged { reason: String, history: History },
+    /// The output location cannot take the outputs (a file where a
+    /// directory should be, no permission, foreign content): found before
+    /// any work is done.
+    #[error("output directory `{path}` {reason}")]
+    Output { path: String, reason: String },
     /// File output failed.
     #[error("i/o on `{path}`: {source}")]
     Io {
@@ -61,6 +66,7 @@ impl Error {
             Error::Singular(_) => "singular_kernel",
             Error::Floating(_) => "floating_body",
             Error::NotConverged { .. } => "not_converged",
+            Error::Output { .. } => "output",
             Error::Io { .. } => "io",
         }
     }

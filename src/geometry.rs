@@ -2,6 +2,7 @@
 //! boundary is exact, before and after refinement.
 
 use crate::error::{Error, Result};
+use crate::nurbs::interpolate::Collocation;
 use crate::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
 
 const S: f64 = std::f64::consts::FRAC_1_SQRT_2;
@@ -142,38 +143,37 @@ pub fn lagrange_interpolant(
         knots.push(KnotVector::new(scaled, degree)?);
         nodes.push(tau);
     }
-    let collocation = |kv: &KnotVector, tau: &[f64]| {
-        let mut m = nalgebra::DMatrix::zeros(tau.len(), kv.n_basis());
-        for (k, &t) in tau.iter().enumerate() {
-            let span = kv.find_span(t);
-            let nb = kv.basis_ders(span, t, 0);
-            for j in 0..=kv.degree() {
-                m[(k, span - kv.degree() + j)] = nb[0][j];
+    let c0 = Collocation::new(&knots[0], &nodes[0])?;
+    let c1 = Collocation::new(&knots[1], &nodes[1])?;
+    let (n0, n1) = (nodes[0].len(), nodes[1].len());
+    // Tensor-product interpolation: the values at the nodes, solved along
+    // ξ for every η row, then along η for every ξ column.
+    let mut values = Vec::with_capacity(n0 * n1);
+    for &eta in &nodes[1] {
+        for &xi in &nodes[0] {
+            values.push(exact.point(xi, eta));
+        }
+    }
+    let mut line = Vec::with_capacity(n0.max(n1));
+    for c in 0..2 {
+        for j in 0..n1 {
+            line.clear();
+            line.extend((0..n0).map(|i| values[i + j * n0][c]));
+            c0.solve_in_place(&mut line);
+            for (i, v) in line.iter().enumerate() {
+                values[i + j * n0][c] = *v;
             }
         }
-        m.lu()
-    };
-    let (lu0, lu1) = (
-        collocation(&knots[0], &nodes[0]),
-        collocation(&knots[1], &nodes[1]),
-    );
-    let (n0, n1) = (nodes[0].len(), nodes[1].len());
-    let mut points = vec![[0.0; 2]; n0 * n1];
-    for c in 0..2 {
-        let v = nalgebra::DMatrix::from_fn(n0, n1, |i, j| exact.point(nodes[0][i], nodes[1][j])[c]);
-        let step = lu0
-            .solve(&v)
-            .ok_or_else(|| Error::Geometry("Lagrange collocation is singular".into()))?;
-        let coef = lu1
-            .solve(&step.transpose())
-            .ok_or_else(|| Error::Geometry("Lagrange collocation is singular".into()))?
-            .transpose();
-        for j in 0..n1 {
-            for i in 0..n0 {
-                points[i + j * n0][c] = coef[(i, j)];
+        for i in 0..n0 {
+            line.clear();
+            line.extend((0..n1).map(|j| values[i + j * n0][c]));
+            c1.solve_in_place(&mut line);
+            for (j, v) in line.iter().enumerate() {
+                values[i + j * n0][c] = *v;
             }
         }
     }
+    let points = values;
     let [k0, k1]: [KnotVector; 2] = knots.try_into().expect("two directions");
     NurbsPatch::new([k0, k1], points, vec![1.0; n0 * n1])
 }

@@ -18,9 +18,11 @@ pub mod post;
 pub mod problem;
 pub mod quadrature;
 pub mod report;
+pub mod resources;
 pub mod scene;
 pub mod solver;
 pub mod space;
 pub mod timing;
+pub mod wellposed;
 
 pub use error::{Error, Result};

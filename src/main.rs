@@ -1,17 +1,86 @@
 //! `iga-contact`: run scene files, check them, and reproduce the book.
 //!
 //! Exit codes: 0 success, 1 a failure while computing or writing (solver
-//! not converged, singular kernel, i/o, ...), 2 invalid input (a scene that
-//! does not parse or validate, an unknown study, bad command-line usage).
-//! Every error is one line on stderr starting with `error:`.
+//! not converged, singular kernel, i/o, out of memory, ...), 2 invalid
+//! input (a scene that does not parse or validate, is ill-posed or too
+//! large for the memory budget, an output directory that cannot take the
+//! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
+//! by SIGINT / SIGTERM (no output written). Every error is one line on
+//! stderr starting with `error:`.
 
 use clap::{Parser, Subcommand};
-use iga_contact::report::chapter::PROGRAMS;
+use iga_contact::report::atomic::{self, OutputSet};
+use iga_contact::report::chapter::{generated_root, PROGRAMS};
+use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::Scene;
 use iga_contact::Error;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
+
+/// The system allocator, except that a failed allocation ends the process
+/// with one `error:` line and exit code 1 instead of Rust's abort (SIGABRT,
+/// "memory allocation of … bytes failed"). The resource estimate refuses
+/// runs that would not fit before they start; this is the last line of
+/// defence when the estimate is exceeded (another process took the memory,
+/// a `ulimit -v` tighter than the budget).
+struct Guarded;
+
+// SAFETY: every call is forwarded to the system allocator unchanged; only
+// a null result is intercepted, and then the process ends.
+unsafe impl GlobalAlloc for Guarded {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc(layout);
+        if p.is_null() {
+            out_of_memory(layout.size());
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc_zeroed(layout);
+        if p.is_null() {
+            out_of_memory(layout.size());
+        }
+        p
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = System.realloc(ptr, layout, new_size);
+        if p.is_null() {
+            out_of_memory(new_size);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Guarded = Guarded;
+
+/// Reports a failed allocation and exits, allocating nothing: the message
+/// is formatted into a stack buffer and written with `write(2)`.
+fn out_of_memory(size: usize) -> ! {
+    let mut buf = [0u8; 320];
+    let mut cur = std::io::Cursor::new(&mut buf[..]);
+    let _ = writeln!(
+        cur,
+        "error: out of memory: allocating {size} bytes failed; the run needs more memory than is \
+         available (lower --max-memory to have such runs refused before they start)"
+    );
+    let n = cur.position() as usize;
+    // SAFETY: writes n initialised bytes of `buf` to stderr, then exits
+    // without running destructors or allocating.
+    unsafe {
+        libc::write(2, buf.as_ptr().cast(), n);
+        libc::_exit(1)
+    }
+}
 
 /// Isogeometric frictionless contact with Nitsche's method and BFGS
 /// (a companion to Hu 2021).
@@ -28,14 +97,23 @@ enum Command {
     Run {
         /// The scene file (TOML).
         scene: PathBuf,
-        /// Output directory [default: out/<scene file stem>].
+        /// Output directory [default: out/<scene file stem>]. Its content
+        /// is replaced as a whole by the run's outputs.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Refuse the run if its estimated peak memory exceeds this (e.g.
+        /// 8G, 512M) [default: 75% of the physical memory].
+        #[arg(long, value_name = "SIZE")]
+        max_memory: Option<String>,
     },
-    /// Parse, validate and build a scene without solving it.
+    /// Validate a scene, estimate its memory, and check its geometry,
+    /// contact points and supports, without assembling or solving.
     Check {
         /// The scene file (TOML).
         scene: PathBuf,
+        /// Report a scene whose estimated peak memory exceeds this as too large.
+        #[arg(long, value_name = "SIZE")]
+        max_memory: Option<String>,
     },
     /// Regenerate the book's tables and figures: run every chapter program
     /// (`cargo run --release --example NAME` in this source tree).
@@ -55,7 +133,7 @@ struct Failure {
 impl Failure {
     fn from_error(context: Option<&Path>, e: &Error) -> Self {
         let code = match e {
-            Error::InvalidInput { .. } => 2,
+            Error::InvalidInput { .. } | Error::Output { .. } => 2,
             _ => 1,
         };
         let message = match context {
@@ -71,8 +149,19 @@ fn one_line(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-fn run(scene_path: &Path, out: Option<PathBuf>) -> Result<(), Failure> {
+/// The memory budget: `--max-memory`, or the machine's default.
+fn budget(max_memory: Option<String>) -> Result<Budget, Failure> {
+    match max_memory {
+        Some(s) => parse_size(&s)
+            .map(Budget::explicit)
+            .map_err(|e| Failure::from_error(None, &e)),
+        None => Ok(Budget::from_machine()),
+    }
+}
+
+fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> Result<(), Failure> {
     let fail = |e: Error| Failure::from_error(Some(scene_path), &e);
+    let budget = budget(max_memory)?;
     let scene = Scene::load(scene_path).map_err(fail)?;
     let out = out.unwrap_or_else(|| {
         let stem = scene_path
@@ -80,7 +169,7 @@ fn run(scene_path: &Path, out: Option<PathBuf>) -> Result<(), Failure> {
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         Path::new("out").join(stem)
     });
-    let report = scene.run(&out).map_err(fail)?;
+    let report = scene.run_within(&out, &budget).map_err(fail)?;
     let place = if report.files.is_empty() {
         String::new()
     } else {
@@ -90,17 +179,12 @@ fn run(scene_path: &Path, out: Option<PathBuf>) -> Result<(), Failure> {
     Ok(())
 }
 
-fn check(scene_path: &Path) -> Result<(), Failure> {
+fn check(scene_path: &Path, max_memory: Option<String>) -> Result<(), Failure> {
     let fail = |e: Error| Failure::from_error(Some(scene_path), &e);
+    let budget = budget(max_memory)?;
     let scene = Scene::load(scene_path).map_err(fail)?;
-    let problem = scene.build().map_err(fail)?;
-    println!(
-        "{}: ok ({} bodies, {} free DOFs, {} contact points)",
-        scene_path.display(),
-        problem.bodies.len(),
-        problem.n(),
-        problem.points.len()
-    );
+    let report = scene.check(&budget).map_err(fail)?;
+    println!("{}: {report}", scene_path.display());
     Ok(())
 }
 
@@ -117,6 +201,14 @@ fn reproduce(only: Option<String>) -> Result<(), Failure> {
             return Err(Failure::from_error(None, &e));
         }
         all.retain(|p| p.example == name);
+    }
+    // Fail fast: every chapter folder must be able to take a new set of
+    // outputs before any program runs (each program then replaces its folder
+    // as one set, or leaves it as it was).
+    for program in &all {
+        OutputSet::begin(generated_root().join(program.chapter))
+            .map_err(|e| Failure::from_error(None, &e))?
+            .abort();
     }
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
@@ -182,6 +274,16 @@ fn reproduce(only: Option<String>) -> Result<(), Failure> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // A file-size limit (`ulimit -f`) makes writes fail with EFBIG, reported
+    // as an i/o error, instead of killing the process with SIGXFSZ.
+    // SAFETY: setting a signal's disposition to "ignore" has no preconditions.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+    if let Err(e) = atomic::install_signal_cleanup() {
+        eprintln!("error: {}", one_line(&e.to_string()));
+        return ExitCode::from(1);
+    }
     // A panic is a bug, but the user still gets one `error:` line and exit
     // code 1 rather than a backtrace and 101.
     std::panic::set_hook(Box::new(|info| {
@@ -201,8 +303,12 @@ fn main() -> ExitCode {
         );
     }));
     let outcome = std::panic::catch_unwind(|| match cli.command {
-        Command::Run { scene, out } => run(&scene, out),
-        Command::Check { scene } => check(&scene),
+        Command::Run {
+            scene,
+            out,
+            max_memory,
+        } => run(&scene, out, max_memory),
+        Command::Check { scene, max_memory } => check(&scene, max_memory),
         Command::Reproduce { only } => reproduce(only),
     });
     match outcome {

@@ -29,7 +29,7 @@
 //! ```
 
 use crate::assembly::Load;
-use crate::contact::{ContactPair, Master, Nitsche};
+use crate::contact::{contact_points, ContactPair, Master, Nitsche, Theta};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
@@ -37,11 +37,15 @@ use crate::material::Material;
 use crate::nurbs::{KnotVector, NurbsPatch, Side};
 use crate::post::{self, PressureProfile};
 use crate::problem::Problem;
+use crate::report::atomic::OutputSet;
 use crate::report::history::history_table;
 use crate::report::table::{Column, Format, Table, Unit};
-use crate::report::{atomic, plot, vtu};
-use crate::solver::{self, SolverOptions};
+use crate::report::{plot, vtu};
+use crate::resources::{human_bytes, human_count, BodySize, Budget, Estimate, Factoring, PairSize};
+use crate::solver::history::History;
+use crate::solver::{self, Factorisation, SolverOptions};
 use crate::space::Space;
+use crate::wellposed;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt;
@@ -64,6 +68,12 @@ pub struct Scene {
     /// Free text, used in figure titles and the summary.
     #[serde(default)]
     pub title: Option<String>,
+    /// Accept body `quadrature` and contact `gauss_points` below the
+    /// minimum the degree needs ([`wellposed::min_quadrature`],
+    /// [`wellposed::min_contact_gauss_points`]), e.g. to study what
+    /// under-integration does. Off by default.
+    #[serde(default)]
+    pub allow_underintegration: bool,
     /// `[[body]]`: the elastic bodies, referred to by name elsewhere.
     #[serde(default, rename = "body")]
     pub bodies: Vec<BodySpec>,
@@ -261,6 +271,20 @@ impl Default for OutputSpec {
 }
 
 impl OutputSpec {
+    /// The names of the files requested, in the output directory.
+    pub fn file_names(&self) -> Vec<&'static str> {
+        [
+            (self.vtu, files::VTU),
+            (self.iterations, files::ITERATIONS),
+            (self.pressure_profile, files::PRESSURE_PROFILE),
+            (self.summary, files::SUMMARY),
+            (self.figures, files::FIGURE),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect()
+    }
+
     /// True if no output is requested.
     pub fn is_empty(&self) -> bool {
         !(self.vtu || self.iterations || self.pressure_profile || self.summary || self.figures)
@@ -290,7 +314,7 @@ pub struct RunReport {
     pub contact_force: [f64; 2],
     /// Resultant of the external loads (computed only for the summary).
     pub applied_force: Option<[f64; 2]>,
-    /// Files written, in order.
+    /// Files written (committed together), sorted by name.
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
@@ -508,6 +532,30 @@ fn in_range(field: impl Into<String>, v: usize, lo: usize, hi: usize) -> Result<
     }
 }
 
+/// [`wellposed::representable`] for a magnitude implied by the input
+/// value at `field`, showing that value.
+fn check_scale(field: &str, value: f64, implied: f64, what: &str) -> Result<()> {
+    wellposed::representable(field, implied, what).map_err(|e| match e {
+        Error::InvalidInput { field, reason, .. } => Error::invalid(field, show(value), reason),
+        other => other,
+    })
+}
+
+impl BodySpec {
+    /// The degree of the discretised body (the larger of its two directions).
+    fn degree(&self) -> usize {
+        match &self.refine {
+            Some(RefineSpec {
+                degree: Some(p), ..
+            }) => (*p).max(self.geometry.degree()),
+            Some(RefineSpec {
+                lagrange: Some(q), ..
+            }) => *q,
+            _ => self.geometry.degree(),
+        }
+    }
+}
+
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
 }
@@ -522,6 +570,44 @@ impl GeometrySpec {
             GeometrySpec::HalfDisk { .. } => "half_disk",
             GeometrySpec::QuarterAnnulus { .. } => "quarter_annulus",
             GeometrySpec::Nurbs(_) => "nurbs",
+        }
+    }
+
+    /// The diameter of the body, from the geometry's parameters.
+    fn size(&self) -> f64 {
+        let span = |pts: &mut dyn Iterator<Item = [f64; 2]>| {
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for p in pts {
+                for c in 0..2 {
+                    lo[c] = lo[c].min(p[c]);
+                    hi[c] = hi[c].max(p[c]);
+                }
+            }
+            (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+        };
+        match self {
+            GeometrySpec::Rectangle { x0, y0, x1, y1 } => (x1 - x0).hypot(y1 - y0),
+            GeometrySpec::Quadrilateral { corners } => span(&mut corners.iter().copied()),
+            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
+                2.0 * radius
+            }
+            GeometrySpec::QuarterAnnulus { outer_radius, .. } => outer_radius * 2f64.sqrt(),
+            GeometrySpec::Nurbs(n) => span(&mut n.control_points.iter().copied()),
+        }
+    }
+
+    /// The key that sets [`GeometrySpec::size`], and its value if a number.
+    fn size_key(&self) -> (&'static str, Option<f64>) {
+        match self {
+            GeometrySpec::Rectangle { x1, .. } => ("x1", Some(*x1)),
+            GeometrySpec::Quadrilateral { .. } => ("corners", None),
+            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
+                ("radius", Some(*radius))
+            }
+            GeometrySpec::QuarterAnnulus { outer_radius, .. } => {
+                ("outer_radius", Some(*outer_radius))
+            }
+            GeometrySpec::Nurbs(_) => ("control_points", None),
         }
     }
 
@@ -815,6 +901,65 @@ impl Scene {
         })
     }
 
+    /// Refuses fewer quadrature points than `need`, unless the scene allows
+    /// under-integration.
+    fn enough_points(&self, field: String, n: usize, need: usize, why: String) -> Result<()> {
+        if n >= need || self.allow_underintegration {
+            return Ok(());
+        }
+        Err(Error::invalid(
+            field,
+            n,
+            format!(
+                "below the {need} Gauss points {why}; set `allow_underintegration = true` at \
+                 the top of the scene to run it anyway"
+            ),
+        ))
+    }
+
+    /// Checks that the magnitudes of the input, and the displacements they
+    /// imply, are ones double precision can carry ([`wellposed::representable`]).
+    fn validate_scales(&self) -> Result<()> {
+        let names = self.body_index();
+        let mut size = Vec::with_capacity(self.bodies.len());
+        for (i, b) in self.bodies.iter().enumerate() {
+            let f = format!("body[{i}]");
+            let young = b.material.young;
+            wellposed::representable(&format!("{f}.material.young"), young, "the stiffness")?;
+            let l = b.geometry.size();
+            let (key, value) = b.geometry.size_key();
+            let g = format!("{f}.geometry.{}.{key}", b.geometry.kind());
+            check_scale(&g, value.unwrap_or(l), l, "the body size")?;
+            size.push(l);
+        }
+        for (i, l) in self.loads.iter().enumerate() {
+            let b = names[l.body().as_str()];
+            let (key, value, force) = match l {
+                Load::BodyForce { force, .. } => {
+                    let m = force[0].hypot(force[1]);
+                    ("force", m, m * size[b] * size[b])
+                }
+                Load::Traction { traction, .. } => {
+                    let m = traction[0].hypot(traction[1]);
+                    ("traction", m, m * size[b])
+                }
+                Load::Pressure { pressure, .. } => ("pressure", *pressure, pressure * size[b]),
+            };
+            let field = format!("load[{i}].{}.{key}", load_kind(l));
+            check_scale(&field, value, force, "the load resultant")?;
+            let young = self.bodies[b].material.young;
+            check_scale(&field, value, force / young, "the displacements")?;
+        }
+        for (i, s) in self.supports.iter().enumerate() {
+            let b = names[s.body.as_str()];
+            let young = self.bodies[b].material.young;
+            let field = format!("support[{i}].value");
+            check_scale(&field, s.value, s.value, "the prescribed displacement")?;
+            check_scale(&field, s.value, s.value * young, "the support reactions")?;
+        }
+        Ok(())
+    }
+
     /// Checks every rule a scene must satisfy, naming the key path and value
     /// of the first violation. [`Scene::from_toml_str`] and [`Scene::build`]
     /// both call it.
@@ -850,6 +995,13 @@ impl Scene {
             b.material.validate(&format!("{f}.material"))?;
             if let Some(q) = b.quadrature {
                 in_range(format!("{f}.quadrature"), q, 1, 30)?;
+                let p = b.degree();
+                self.enough_points(
+                    format!("{f}.quadrature"),
+                    q,
+                    wellposed::min_quadrature(p),
+                    format!("a body of degree {p} needs per direction (p + 1: the stiffness is exact on affine elements; fewer leave zero-energy modes)"),
+                )?;
             }
         }
         let names = self.body_index();
@@ -920,7 +1072,20 @@ impl Scene {
                 }
             }
             c.nitsche.validate(&format!("{f}.nitsche"))?;
+            if let Some(n) = c.nitsche.gauss_points {
+                let mut p = self.bodies[slave].degree();
+                if let Some(m) = c.master.body.as_ref().and_then(|m| names.get(m.as_str())) {
+                    p = p.max(self.bodies[*m].degree());
+                }
+                self.enough_points(
+                    format!("{f}.nitsche.gauss_points"),
+                    n,
+                    wellposed::min_contact_gauss_points(p),
+                    format!("a contact side of degree {p} needs (p + 1: the products of two traces are exact on straight sides)"),
+                )?;
+            }
         }
+        self.validate_scales()?;
         self.solver.validate("solver")?;
         let o = &self.output;
         in_range(
@@ -951,9 +1116,45 @@ impl Scene {
 // Building and running
 // ---------------------------------------------------------------------------
 
+/// The discretised scene before anything of the size of the system is
+/// assembled: bodies, DOF numbering, loads and contact pairs.
+struct Discrete {
+    bodies: Vec<Body>,
+    map: DofMap,
+    loads: Vec<Load>,
+    pairs: Vec<ContactPair>,
+}
+
 /// A built scene: the problem and the loads it was assembled with.
 struct Built {
     problem: Problem,
+}
+
+/// What [`Scene::check`] found: the scene is valid, fits the memory
+/// budget, and is well posed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckReport {
+    pub bodies: usize,
+    /// Free degrees of freedom.
+    pub dofs: usize,
+    pub contact_points: usize,
+    /// The resource estimate the budget was checked against.
+    pub estimate: Estimate,
+}
+
+impl fmt::Display for CheckReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "ok ({} bodies, {} free DOFs, {} contact points; a run needs about {} of memory, \
+             {} matrix non-zeros)",
+            self.bodies,
+            self.dofs,
+            self.contact_points,
+            human_bytes(self.estimate.peak_bytes()),
+            human_count(self.estimate.nonzeros)
+        )
+    }
 }
 
 /// True if every control point of `side` coincides with the first: the
@@ -972,12 +1173,48 @@ fn degenerate_side(patch: &NurbsPatch, side: Side) -> bool {
     })
 }
 
+/// An error of the geometry layer, retold with the scene key path of body
+/// `i` (`geometry` the path of its geometry table): library field names
+/// such as `radius` or `patch.control_points[0]` are not scene keys.
+fn in_body(e: Error, i: usize, name: &str, geometry: &str) -> Error {
+    match e {
+        Error::InvalidInput {
+            field,
+            value,
+            reason,
+        } => {
+            let key = field.split(['.', '[']).next().unwrap_or("");
+            let scene_key = matches!(
+                key,
+                "x0" | "y0" | "x1" | "y1" | "center" | "radius" | "inner_radius" | "outer_radius"
+            );
+            let field = if scene_key {
+                format!("{geometry}.{field}")
+            } else {
+                format!("body[{i}].geometry")
+            };
+            Error::invalid(field, value, format!("{reason} (body {name:?})"))
+        }
+        Error::Geometry(m) => Error::Geometry(format!("body[{i}] ({name:?}): {m}")),
+        other => other,
+    }
+}
+
 impl Scene {
+    /// The exact patch of body `i`, errors naming the body.
+    fn exact_patch(&self, i: usize) -> Result<NurbsPatch> {
+        let b = &self.bodies[i];
+        let f = format!("body[{i}].geometry");
+        b.geometry
+            .patch(&f)
+            .map_err(|e| in_body(e, i, &b.name, &format!("{f}.{}", b.geometry.kind())))
+    }
+
     /// The discretised patch of body `i`.
     fn body_patch(&self, i: usize) -> Result<NurbsPatch> {
         let b = &self.bodies[i];
-        let exact = b.geometry.patch(&format!("body[{i}].geometry"))?;
-        match &b.refine {
+        let exact = self.exact_patch(i)?;
+        let refined = match &b.refine {
             None => Ok(exact),
             Some(RefineSpec {
                 degree: Some(p),
@@ -990,18 +1227,142 @@ impl Scene {
                 ..
             }) => geometry::lagrange_interpolant(&exact, *q, *elements),
             Some(_) => unreachable!("validated: degree or lagrange"),
-        }
+        };
+        refined.map_err(|e| match e {
+            Error::InvalidInput { value, reason, .. } => Error::invalid(
+                format!("body[{i}].refine"),
+                value,
+                format!("{reason} (in the refined patch of body {:?})", b.name),
+            ),
+            other => in_body(other, i, &b.name, ""),
+        })
     }
 
-    fn assemble(&self) -> Result<Built> {
+    /// The size of body `i`'s discretisation, from its knot vectors alone.
+    fn body_size(&self, i: usize) -> Result<BodySize> {
+        let b = &self.bodies[i];
+        let exact = self.exact_patch(i)?;
+        // Per direction: basis functions and elements after refinement.
+        let count = |kv: &KnotVector, d: usize| -> (usize, usize, usize) {
+            let spans = kv.spans().len();
+            match &b.refine {
+                None => (kv.n_basis(), spans, kv.degree()),
+                Some(RefineSpec {
+                    degree: Some(p),
+                    elements,
+                    ..
+                }) => {
+                    let p = (*p).max(kv.degree());
+                    let mult = kv.multiplicities();
+                    let raise = p - kv.degree();
+                    let interior: usize = mult[1..mult.len() - 1].iter().map(|m| m + raise).sum();
+                    (
+                        p + 1 + interior + spans * (elements[d] - 1),
+                        spans * elements[d],
+                        p,
+                    )
+                }
+                Some(RefineSpec {
+                    lagrange: Some(q),
+                    elements,
+                    ..
+                }) => (elements[d] * q + 1, elements[d], *q),
+                Some(_) => unreachable!("validated: degree or lagrange"),
+            }
+        };
+        let (n0, e0, p0) = count(&exact.knots[0], 0);
+        let (n1, e1, p1) = count(&exact.knots[1], 1);
+        let (field, value) = match &b.refine {
+            Some(r) => (
+                format!("body[{i}].refine.elements"),
+                format!("{:?}", r.elements),
+            ),
+            None => (
+                format!("body[{i}].geometry"),
+                format!("{n0} × {n1} control points"),
+            ),
+        };
+        Ok(BodySize {
+            field,
+            value,
+            n: [n0, n1],
+            degree: [p0, p1],
+            elements: [e0, e1],
+            side_elements: [e1, e0],
+        })
+    }
+
+    /// Estimates DOFs, non-zeros and peak memory of a run from the scene
+    /// alone, allocating nothing of the size of the discretisation.
+    pub fn estimate(&self) -> Result<Estimate> {
+        self.validate()?;
+        let sizes = (0..self.bodies.len())
+            .map(|i| self.body_size(i))
+            .collect::<Result<Vec<_>>>()?;
+        let names = self.body_index();
+        let pairs = self
+            .contacts
+            .iter()
+            .map(|c| {
+                let s = &sizes[names[c.slave.as_str()]];
+                let along = c.slave_side.along();
+                let mut degree = s.degree[0].max(s.degree[1]);
+                let mut coupled = s.element_points();
+                let mut master_breaks = 2.0;
+                let mut trace = s.n[along] as f64;
+                if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
+                    let m = &sizes[names[name.as_str()]];
+                    degree = degree.max(m.degree[0].max(m.degree[1]));
+                    coupled += m.element_points();
+                    master_breaks = m.elements[side.along()] as f64 + 1.0;
+                    trace += m.n[side.along()] as f64;
+                }
+                let g = c.nitsche.points(degree) as f64;
+                let twice = if c.nitsche.theta != Theta::Incomplete {
+                    2.0
+                } else {
+                    1.0
+                };
+                PairSize {
+                    points: g * (s.elements[along] as f64 + master_breaks),
+                    dofs_per_point: 2.0 * coupled,
+                    rank: twice * 2.0 * trace,
+                }
+            })
+            .collect();
+        let lu = self
+            .contacts
+            .iter()
+            .any(|c| c.nitsche.theta == Theta::Symmetric)
+            || self.solver.factorisation == Factorisation::Lu;
+        let vtu = self.output.vtu.then_some(self.output.vtu_subdivisions);
+        let factoring = if lu {
+            Factoring::Lu
+        } else {
+            Factoring::Cholesky
+        };
+        Ok(Estimate::new(sizes, pairs, vtu, factoring))
+    }
+
+    /// Refines every body and checks its map at every quadrature point
+    /// (naming the body where it folds), numbers the DOFs and resolves
+    /// loads and contact pairs; assembles nothing.
+    fn discretise(&self) -> Result<Discrete> {
         self.validate()?;
         let names = self.body_index();
         let idx = |name: &str| names[name];
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (i, b) in self.bodies.iter().enumerate() {
+            let space = Space::new(self.body_patch(i)?, b.quadrature)
+                .map_err(|e| in_body(e, i, &b.name, ""))?;
+            for e in &space.elements {
+                space
+                    .quadrature(e)
+                    .map_err(|e| in_body(e, i, &b.name, ""))?;
+            }
             bodies.push(Body {
                 name: b.name.clone(),
-                space: Space::new(self.body_patch(i)?, b.quadrature)?,
+                space,
                 material: b.material,
             });
         }
@@ -1055,99 +1416,141 @@ impl Scene {
                 nitsche: c.nitsche,
             });
         }
+        Ok(Discrete {
+            bodies,
+            map,
+            loads,
+            pairs,
+        })
+    }
+
+    fn assemble(&self) -> Result<Built> {
+        let Discrete {
+            bodies,
+            map,
+            loads,
+            pairs,
+        } = self.discretise()?;
+        // Before the assembly: the contact points cost only the boundary.
+        let points = contact_points(&bodies, &map, &pairs)?;
+        wellposed::check_rigid_modes(&bodies, &map, &points)?;
+        drop(points);
         let problem = Problem::new(bodies, map, &loads, pairs)?;
         Ok(Built { problem })
     }
 
-    /// Validates the scene and assembles its [`Problem`] (no solve).
+    /// Validates the scene and assembles its [`Problem`] (no solve),
+    /// rejecting rigid motions nothing holds
+    /// ([`wellposed::check_rigid_modes`]).
     pub fn build(&self) -> Result<Problem> {
         Ok(self.assemble()?.problem)
+    }
+
+    /// Everything [`Scene::run`] checks before it solves — validity, the
+    /// resource estimate against `budget`, the geometric map of every
+    /// body at every quadrature point, the contact points and the rigid
+    /// modes — without assembling or solving anything.
+    pub fn check(&self, budget: &Budget) -> Result<CheckReport> {
+        let estimate = self.estimate()?;
+        estimate.check(budget, "output.vtu_subdivisions")?;
+        let d = self.discretise()?;
+        let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
+        wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
+        Ok(CheckReport {
+            bodies: d.bodies.len(),
+            dofs: d.map.n_free(),
+            contact_points: points.len(),
+            estimate,
+        })
+    }
+
+    /// Builds, solves, and writes the outputs requested in `[output]` into
+    /// `out_dir`, within the default memory budget
+    /// ([`Budget::from_machine`]). See [`Scene::run_within`].
+    pub fn run(&self, out_dir: impl AsRef<Path>) -> Result<RunReport> {
+        self.run_within(out_dir, &Budget::from_machine())
     }
 
     /// Builds, solves, and writes the outputs requested in `[output]` into
     /// `out_dir` — nothing else: a scene without outputs writes no file and
     /// does not even create the directory.
     ///
-    /// Every output is computed in memory before the first file is
-    /// written, and every file is written atomically, so a failed run
-    /// (invalid scene, solver not converged, bad figure data) leaves
-    /// earlier results untouched and no partial files.
-    pub fn run(&self, out_dir: impl AsRef<Path>) -> Result<RunReport> {
+    /// Before any work: the scene is validated, its estimated peak memory
+    /// is checked against `budget`, and the output directory is checked
+    /// (it must be creatable and replaceable). The outputs are one
+    /// transaction ([`OutputSet`]): staged beside `out_dir` and swapped in
+    /// as a whole, so a failed or interrupted run leaves the earlier
+    /// results exactly as they were.
+    pub fn run_within(&self, out_dir: impl AsRef<Path>, budget: &Budget) -> Result<RunReport> {
         let start = Instant::now();
-        let out_dir = out_dir.as_ref();
+        self.estimate()?.check(budget, "output.vtu_subdivisions")?;
+        let o = &self.output;
+        let set = if o.is_empty() {
+            None
+        } else {
+            Some(OutputSet::begin_expecting(out_dir, &o.file_names())?)
+        };
         let Built { problem } = self.assemble()?;
         let solution = solver::solve(&problem, &self.solver)?;
         let full = &solution.full;
-        let resultants = post::contact_resultants(&problem, full);
-        let contact_force = post::contact_resultant(&problem, full);
+        let contact_force = post::contact_resultant(&problem, full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
         let history = &solution.history;
-        let o = &self.output;
         let title = self.title.as_deref().unwrap_or("scene");
 
-        let profile = if o.pressure_profile || o.figures || o.summary {
-            Some(PressureProfile::dense(&problem, full)?)
-        } else {
-            None
-        };
-
-        // Everything textual, in memory first.
-        let mut texts: Vec<(&str, String)> = Vec::new();
-        if o.iterations {
-            texts.push((
-                files::ITERATIONS,
-                history_table(history, Unit::None, Unit::None)?.to_csv(),
-            ));
-        }
-        if let (true, Some(profile)) = (o.pressure_profile, &profile) {
-            texts.push((files::PRESSURE_PROFILE, profile_table(profile)?.to_csv()));
-        }
-        if o.vtu {
-            let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
-            mesh.validate()?;
-            texts.push((files::VTU, mesh.to_xml()));
-        }
         let applied_force = if o.summary {
-            Some(post::applied_resultant(&problem)?)
+            Some(post::applied_resultant(&problem)?.map(no_negative_zero))
         } else {
             None
         };
-        if let (Some(applied_force), Some(profile)) = (applied_force, &profile) {
-            let contact = resultants
-                .iter()
-                .enumerate()
-                .map(|(k, &f)| {
-                    let m = profile.measures(k);
-                    PairSummary {
-                        p0: m.p0,
-                        half_width: m.half_width,
-                        zones: m.zones,
-                        contact_force: f,
-                    }
-                })
-                .collect();
-            let summary = Summary {
-                title,
-                dofs: problem.n(),
-                iterations: history.len(),
-                corrections: history.corrections(),
-                relative_residual: history.last_relative_residual(),
-                contact_points: problem.points.len(),
-                active_points,
-                contact_force,
-                applied_force,
-                contact,
-                solver: solver_table(&self.solver),
-            };
-            let text = toml::to_string(&summary)
-                .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;
-            texts.push((files::SUMMARY, text));
-        }
+        let files = match set {
+            None => Vec::new(),
+            Some(mut set) => {
+                let outputs = Outputs {
+                    title,
+                    contact_force,
+                    applied_force,
+                    active_points,
+                };
+                self.stage_outputs(&mut set, &problem, &solution, &outputs)?;
+                set.commit()?
+            }
+        };
+        Ok(RunReport {
+            dofs: problem.n(),
+            iterations: history.len(),
+            corrections: history.corrections(),
+            active_points,
+            contact_points: problem.points.len(),
+            contact_force,
+            applied_force,
+            files,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
 
-        let mut written = Vec::new();
-        // The figure validates its data before drawing and is the only
-        // output rendered straight to disk, so it goes first: if it fails,
-        // nothing has been written.
+    /// Computes and stages every requested output.
+    fn stage_outputs(
+        &self,
+        set: &mut OutputSet,
+        problem: &Problem,
+        solution: &solver::Solution,
+        out: &Outputs,
+    ) -> Result<()> {
+        let Outputs {
+            title,
+            contact_force,
+            applied_force,
+            active_points,
+        } = *out;
+        let o = &self.output;
+        let full = &solution.full;
+        let history = &solution.history;
+        let profile = if o.pressure_profile || o.figures || o.summary {
+            Some(PressureProfile::dense(problem, full)?)
+        } else {
+            None
+        };
         if let (true, Some(profile)) = (o.figures, &profile) {
             let pairs = self.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
@@ -1172,27 +1575,82 @@ impl Scene {
                 log_x: false,
                 log_y: false,
             };
-            let path = out_dir.join(files::FIGURE);
-            plot::line_chart(&path, &axes, &series)?;
-            written.push(path);
+            plot::line_chart(set.dir().join(files::FIGURE), &axes, &series)?;
         }
-        for (name, text) in texts {
-            let path = out_dir.join(name);
-            atomic::write_text(&path, &text)?;
-            written.push(path);
+        if o.iterations {
+            let table = history_table(history, Unit::None, Unit::None)?;
+            set.stage(files::ITERATIONS, table.to_csv().as_bytes())?;
         }
-        Ok(RunReport {
-            dofs: problem.n(),
-            iterations: history.len(),
-            corrections: history.corrections(),
-            active_points,
-            contact_points: problem.points.len(),
-            contact_force,
-            applied_force,
-            files: written,
-            seconds: start.elapsed().as_secs_f64(),
-        })
+        if let (true, Some(profile)) = (o.pressure_profile, &profile) {
+            set.stage(
+                files::PRESSURE_PROFILE,
+                profile_table(profile)?.to_csv().as_bytes(),
+            )?;
+        }
+        if o.vtu {
+            let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
+            mesh.validate()?;
+            let xml = mesh.to_xml();
+            drop(mesh);
+            set.stage(files::VTU, xml.as_bytes())?;
+        }
+        if let (Some(applied_force), Some(profile)) = (applied_force, &profile) {
+            let contact = post::contact_resultants(problem, full)
+                .iter()
+                .enumerate()
+                .map(|(k, &f)| {
+                    let m = profile.measures(k);
+                    PairSummary {
+                        p0: no_negative_zero(m.p0),
+                        half_width: no_negative_zero(m.half_width),
+                        zones: m.zones,
+                        contact_force: f.map(no_negative_zero),
+                    }
+                })
+                .collect();
+            let summary = Summary {
+                title,
+                dofs: problem.n(),
+                iterations: history.len(),
+                corrections: history.corrections(),
+                relative_residual: no_negative_zero(final_relative_residual(history)),
+                contact_points: problem.points.len(),
+                active_points,
+                contact_force,
+                applied_force,
+                contact,
+                solver: solver_table(&self.solver),
+            };
+            let text = toml::to_string(&summary)
+                .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;
+            set.stage(files::SUMMARY, text.as_bytes())?;
+        }
+        Ok(())
     }
+}
+
+/// The figures of a run that go into its outputs.
+struct Outputs<'a> {
+    title: &'a str,
+    contact_force: [f64; 2],
+    applied_force: Option<[f64; 2]>,
+    active_points: usize,
+}
+
+/// The relative residual a converged run ends with; a run that needed no
+/// iteration (nothing to balance: zero load) ends with 0, not 1.
+fn final_relative_residual(h: &History) -> f64 {
+    match h.rows.last() {
+        Some(r) => r.relative_residual,
+        None if h.initial_residual == 0.0 => 0.0,
+        None => 1.0,
+    }
+}
+
+/// `v` with a negative zero turned into +0 (IEEE: −0 + 0 = +0), so that no
+/// output shows `-0`.
+fn no_negative_zero(v: f64) -> f64 {
+    v + 0.0
 }
 
 /// The dense pressure profile as a table: pair, position, bracket and pressure.

@@ -185,3 +185,111 @@ fn usage_errors_exit_with_2() {
     let o = run(&dir, &["run"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// A block on a rigid floor with the given degree, elements and material.
+fn block(degree: usize, elements: [usize; 2], young: &str, pressure: &str) -> String {
+    format!(
+        r#"
+[[body]]
+name = "block"
+geometry = {{ rectangle = {{ x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 }} }}
+refine = {{ degree = {degree}, elements = [{}, {}] }}
+material = {{ young = {young}, poisson = 0.3, plane = "strain" }}
+
+[[support]]
+body = "block"
+side = "xi_min"
+component = "x"
+
+[[load]]
+pressure = {{ body = "block", side = "eta_max", pressure = {pressure} }}
+
+[[contact]]
+slave = "block"
+slave_side = "eta_min"
+master = {{ rigid_segment = {{ from = [-0.5, 0.0], to = [1.5, 0.0] }} }}
+"#,
+        elements[0], elements[1]
+    )
+}
+
+#[test]
+fn input_scale_overflow_and_underflow_are_reported_as_such() {
+    let dir = workdir("scales");
+    for (name, young, pressure, key, word) in [
+        (
+            "tiny.toml",
+            "1e-300",
+            "1.0e4",
+            "body[0].material.young",
+            "underflows",
+        ),
+        (
+            "huge.toml",
+            "1.0e6",
+            "1e200",
+            "load[0].pressure.pressure",
+            "overflows",
+        ),
+    ] {
+        std::fs::write(dir.join(name), block(2, [2, 2], young, pressure)).unwrap();
+        for cmd in ["check", "run"] {
+            let o = run(&dir, &[cmd, name]);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {name}: {}", stderr(&o));
+            let line = single_error_line(&o);
+            assert!(line.contains(key) && line.contains(word), "{line}");
+            assert!(!line.contains("diverged"), "{line}");
+        }
+    }
+}
+
+#[test]
+fn a_scene_over_the_memory_budget_is_refused_naming_the_field() {
+    let dir = workdir("budget");
+    std::fs::write(
+        dir.join("big.toml"),
+        block(10, [4096, 4096], "1.0e6", "1.0e4"),
+    )
+    .unwrap();
+    for cmd in ["check", "run"] {
+        let o = run(&dir, &[cmd, "big.toml"]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(
+            line.contains("`body[0].refine.elements` = [4096, 4096]")
+                && line.contains("memory budget"),
+            "{line}"
+        );
+    }
+    // --max-memory moves the budget both ways.
+    std::fs::write(dir.join("small.toml"), block(2, [4, 4], "1.0e6", "1.0e4")).unwrap();
+    let o = run(&dir, &["check", "small.toml", "--max-memory", "1M"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let line = single_error_line(&o);
+    assert!(line.contains("set by --max-memory"), "{line}");
+    let o = run(&dir, &["check", "small.toml", "--max-memory", "2G"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("a run needs about"), "{}", stdout(&o));
+    let o = run(&dir, &["check", "small.toml", "--max-memory", "lots"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(single_error_line(&o).contains("--max-memory"));
+}
+
+#[test]
+fn check_at_the_documented_maxima_answers_without_assembling() {
+    let dir = workdir("maxima");
+    for (name, degree, elements) in [
+        ("d10_64x64.toml", 10, [64, 64]),
+        ("d10_4096x1.toml", 10, [4096, 1]),
+        ("d2_4096x1.toml", 2, [4096, 1]),
+        ("d1_4096x4096.toml", 1, [4096, 4096]),
+    ] {
+        std::fs::write(dir.join(name), block(degree, elements, "1.0e6", "1.0e4")).unwrap();
+        let o = run(&dir, &["check", name, "--max-memory", "8G"]);
+        match o.status.code() {
+            Some(0) => assert!(stdout(&o).contains("ok ("), "{name}: {}", stdout(&o)),
+            Some(2) => assert!(single_error_line(&o).contains("memory budget"), "{name}"),
+            other => panic!("{name}: exit {other:?}: {}", stderr(&o)),
+        }
+    }
+}

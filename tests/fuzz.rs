@@ -87,18 +87,47 @@ fn small(scene: &Scene) -> bool {
         && scene.bodies.len() <= 4
 }
 
-/// Parses, and builds what validates and is small. Must not panic.
+/// Top-level keys of a scene, and the names of non-key locations.
+const ROOTS: [&str; 10] = [
+    "title",
+    "allow_underintegration",
+    "body",
+    "support",
+    "load",
+    "contact",
+    "solver",
+    "output",
+    "scene",
+    "line",
+];
+
+/// An error names a place in the scene: a key path below a top-level key
+/// (`body[0].geometry.full_disk.radius`), a line of the text, or the scene.
+fn assert_names_a_scene_key(e: &iga_contact::Error) {
+    let msg = e.to_string();
+    assert!(!msg.contains('\n'), "multi-line error: {msg}");
+    if let iga_contact::Error::InvalidInput { field, reason, .. } = e {
+        // An unknown key is named where the text has it.
+        let root = field.split(['.', '[', ' ']).next().unwrap_or("");
+        assert!(
+            ROOTS.contains(&root) || reason.starts_with("unknown field"),
+            "`{field}` is not a scene key path: {msg}"
+        );
+    }
+}
+
+/// Parses, and builds what validates and is small. Must not panic, and
+/// every error must name a scene key.
 fn parse_and_build(text: &str) {
     match Scene::from_toml_str(text) {
         Ok(scene) => {
             if small(&scene) {
-                let _ = scene.build();
+                if let Err(e) = scene.build() {
+                    assert_names_a_scene_key(&e);
+                }
             }
         }
-        Err(e) => {
-            let msg = e.to_string();
-            assert!(!msg.contains('\n'), "multi-line parse error: {msg}");
-        }
+        Err(e) => assert_names_a_scene_key(&e),
     }
 }
 

@@ -743,6 +743,126 @@ fn refinement_structure_and_errors() {
     }
 }
 
+/// The dense collocation matrix B[r][i] = N_i(τ_r).
+fn collocation(k: &KnotVector, tau: &[f64]) -> nalgebra::DMatrix<f64> {
+    let p = k.degree();
+    let mut m = nalgebra::DMatrix::zeros(tau.len(), k.n_basis());
+    for (r, &t) in tau.iter().enumerate() {
+        let span = k.find_span(t);
+        let n = k.basis_ders(span, t, 0);
+        for a in 0..=p {
+            m[(r, span - p + a)] = n[0][a];
+        }
+    }
+    m
+}
+
+/// Test oracle: refinement as a dense collocation solve, the cubic method
+/// the local algorithms replaced. If `new` contains the old space, the
+/// coefficients in `new` are fixed by interpolation at its Greville points
+/// (Schoenberg–Whitney), so this is an independent route to the same numbers.
+fn respace_by_collocation(old: &KnotVector, new: &KnotVector, coef: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let tau = new.greville();
+    let c = nalgebra::DMatrix::from_fn(coef.len(), 3, |i, j| coef[i][j]);
+    let values = collocation(old, &tau) * c;
+    let d = collocation(new, &tau)
+        .lu()
+        .solve(&values)
+        .expect("invertible");
+    (0..new.n_basis())
+        .map(|i| [d[(i, 0)], d[(i, 1)], d[(i, 2)]])
+        .collect()
+}
+
+#[test]
+fn local_refinement_matches_the_collocation_oracle() {
+    let mut rng = Lcg::new(21);
+    let mut worst: f64 = 0.0;
+    let mut cases = 0;
+    for p in 1..=5 {
+        let old = nonuniform(p);
+        for round in 0..12 {
+            let n = old.n_basis();
+            let points: Vec<[f64; 2]> = (0..n)
+                .map(|_| [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)])
+                .collect();
+            let weights: Vec<f64> = (0..n).map(|_| rng.range(0.3, 2.0)).collect();
+            let curve = NurbsCurve::new(old.clone(), points, weights).unwrap();
+            // elevate by 0..=3, then insert 0..6 random knots (some repeated)
+            let t = round % 4;
+            let mut new = old.clone();
+            for _ in 0..t {
+                new = new.elevated();
+            }
+            let mut extra: Vec<f64> = (0..round / 2).map(|_| rng.range(0.01, 0.99)).collect();
+            if round % 3 == 0 && p >= 2 {
+                extra.push(0.41);
+                extra.push(0.41);
+            }
+            if !extra.is_empty() {
+                new = new.with_inserted(&extra).unwrap();
+            }
+            let local = curve.respaced(new.clone()).unwrap();
+            let homogeneous: Vec<[f64; 3]> = curve
+                .points
+                .iter()
+                .zip(&curve.weights)
+                .map(|(q, &w)| [w * q[0], w * q[1], w])
+                .collect();
+            let oracle = respace_by_collocation(&old, &new, &homogeneous);
+            assert_eq!(local.points.len(), oracle.len());
+            for (i, o) in oracle.iter().enumerate() {
+                let w = local.weights[i];
+                let h = [w * local.points[i][0], w * local.points[i][1], w];
+                for c in 0..3 {
+                    worst = worst.max((h[c] - o[c]).abs());
+                }
+            }
+            cases += 1;
+        }
+    }
+    eprintln!("{cases} cases: max |local − collocation| = {worst:.2e}");
+    assert!(
+        worst <= 1e-12,
+        "local refinement differs from the oracle by {worst:.3e}"
+    );
+}
+
+#[test]
+fn banded_interpolation_matches_a_dense_solve() {
+    use iga_contact::nurbs::interpolate::Collocation;
+    let mut rng = Lcg::new(22);
+    for p in 1..=6 {
+        let k = nonuniform(p);
+        let tau = k.greville();
+        let values: Vec<f64> = tau.iter().map(|_| rng.range(-1.0, 1.0)).collect();
+        let mut banded = values.clone();
+        Collocation::new(&k, &tau)
+            .unwrap()
+            .solve_in_place(&mut banded);
+        let dense = collocation(&k, &tau)
+            .lu()
+            .solve(&nalgebra::DVector::from_vec(values.clone()))
+            .unwrap();
+        for (b, d) in banded.iter().zip(dense.iter()) {
+            assert!((b - d).abs() <= 1e-12, "p = {p}: {b} vs {d}");
+        }
+        // and the spline takes the values
+        for (t, v) in tau.iter().zip(&values) {
+            let span = k.find_span(*t);
+            let n = k.basis_ders(span, *t, 0);
+            let s: f64 = (0..=p).map(|a| n[0][a] * banded[span - p + a]).sum();
+            assert!((s - v).abs() <= 1e-12, "p = {p}: {s} vs {v}");
+        }
+    }
+    // points outside the supports are refused, not solved
+    let k = nonuniform(2);
+    let mut tau = k.greville();
+    let last = tau.len() - 1;
+    tau[last] = tau[0];
+    assert!(Collocation::new(&k, &tau).is_err());
+}
+
 // ---------------------------------------------------------------------------
 // Jacobians and normals
 // ---------------------------------------------------------------------------

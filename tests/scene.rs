@@ -6,6 +6,7 @@
 mod setup;
 
 use iga_contact::post::{PressureProfile, PROFILE_SAMPLES_PER_ELEMENT};
+use iga_contact::report::atomic::{read_manifest, MANIFEST};
 use iga_contact::scene::{files, Scene};
 use iga_contact::solver::{self, SolverOptions};
 use iga_contact::Error;
@@ -122,10 +123,12 @@ fn tmp(name: &str) -> PathBuf {
     dir
 }
 
+/// The files of an output directory, without the manifest of the set.
 fn listing(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
         .map(|rd| {
             rd.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n != MANIFEST)
                 .collect()
         })
         .unwrap_or_default();
@@ -271,6 +274,8 @@ fn hertz_run_writes_everything_it_asks_for() {
     expected.sort();
     assert_eq!(listing(&dir), expected);
     assert_eq!(report.files.len(), 5);
+    // The manifest lists exactly the committed files.
+    assert_eq!(read_manifest(&dir).unwrap(), expected);
     // Equilibrium: the floor carries the applied load.
     let applied = report.applied_force.unwrap();
     assert!((report.contact_force[1] + applied[1]).abs() < 1e-8 * applied[1].abs());
@@ -1003,4 +1008,345 @@ fn defaults_are_the_papers_choices() {
     assert_eq!(c.gauss_points, None);
     assert!(scene.output.is_empty());
     assert_eq!(scene.solver, SolverOptions::default());
+}
+
+// ---------------------------------------------------------------------------
+// Well-posedness: rigid modes, quadrature, input scales
+// ---------------------------------------------------------------------------
+
+/// A block on a rigid floor with the given supports (TOML tables).
+fn block_on_floor(supports: &str) -> String {
+    format!(
+        r#"
+[[body]]
+name = "block"
+geometry = {{ rectangle = {{ x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 }} }}
+refine = {{ degree = 2, elements = [2, 2] }}
+material = {{ young = 1.0e6, poisson = 0.3, plane = "strain" }}
+{supports}
+[[load]]
+pressure = {{ body = "block", side = "eta_max", pressure = 1.0e4 }}
+
+[[contact]]
+slave = "block"
+slave_side = "eta_min"
+master = {{ rigid_segment = {{ from = [-0.5, 0.0], to = [1.5, 0.0] }} }}
+"#
+    )
+}
+
+#[test]
+fn a_body_free_to_slide_along_the_contact_surface_is_rejected() {
+    let msg = rejects(&block_on_floor(""), "body[0]", "\"block\"");
+    assert!(msg.contains("slide along (1, 0)"), "{msg}");
+    assert!(
+        msg.contains("contact normals") && msg.contains("[[support]]"),
+        "{msg}"
+    );
+    // Loaded or not.
+    let unloaded = block_on_floor("").replace("pressure = 1.0e4", "pressure = 0.0");
+    rejects(&unloaded, "body[0]", "\"block\"");
+    // A support that holds the sliding makes it well posed.
+    let held = "[[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
+    Scene::from_toml_str(&block_on_floor(held))
+        .unwrap()
+        .build()
+        .unwrap();
+}
+
+#[test]
+fn the_upper_taylor_block_without_its_side_support_is_named() {
+    let text = base_with(
+        "[[support]]\nbody = \"upper\"\nside = \"xi_min\"\ncomponent = \"x\"\n",
+        "",
+    );
+    let msg = rejects(&text, "body[1]", "\"upper\"");
+    assert!(msg.contains("slide along (1, 0)"), "{msg}");
+}
+
+#[test]
+fn a_body_free_to_rotate_about_a_curved_contact_surface_is_rejected() {
+    // A quarter annulus bearing on a concentric one: the contact normals
+    // are radial, so rotation about the common centre is never resisted.
+    let text = r#"
+[[body]]
+name = "outer"
+geometry = { quarter_annulus = { inner_radius = 1.0, outer_radius = 1.5 } }
+refine = { degree = 2, elements = [4, 2] }
+material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
+
+[[body]]
+name = "inner"
+geometry = { quarter_annulus = { inner_radius = 0.5, outer_radius = 1.0 } }
+refine = { degree = 2, elements = [3, 2] }
+material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
+
+[[support]]
+body = "outer"
+side = "eta_max"
+component = "x"
+
+[[support]]
+body = "outer"
+side = "eta_max"
+component = "y"
+
+[[load]]
+body_force = { body = "inner", force = [1.0, 1.0] }
+
+[[contact]]
+slave = "inner"
+slave_side = "eta_max"
+master = { body = "outer", side = "eta_min" }
+"#;
+    let msg = rejects(text, "body[1]", "\"inner\"");
+    assert!(msg.contains("rotate about (0, 0)"), "{msg}");
+    // `check` finds it too, without assembling anything.
+    let scene = Scene::from_toml_str(text).unwrap();
+    let e = scene
+        .check(&iga_contact::resources::Budget::from_machine())
+        .unwrap_err();
+    assert!(e.to_string().contains("rotate about (0, 0)"), "{e}");
+}
+
+#[test]
+fn a_body_with_neither_support_nor_contact_is_rejected() {
+    let text = one_body(
+        "{ rectangle = { x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 1.0 } }",
+        "",
+    )
+    .replace(
+        "[[support]]\nbody = \"b\"\nside = \"eta_min\"\ncomponent = \"x\"\n",
+        "",
+    );
+    let msg = rejects(&text, "body[0]", "\"b\"");
+    assert!(
+        msg.contains("slide along (1, 0)") && msg.contains("no contact"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn quadrature_below_the_degree_needs_is_refused_unless_allowed() {
+    let text = base_with(
+        "plane = \"stress\" }\n\n[[body]]",
+        "plane = \"stress\" }\nquadrature = 2\n\n[[body]]",
+    );
+    let msg = rejects(&text, "body[0].quadrature", "2");
+    assert!(
+        msg.contains("3 Gauss points") && msg.contains("allow_underintegration = true"),
+        "{msg}"
+    );
+    let allowed = format!("allow_underintegration = true\n{text}");
+    Scene::from_toml_str(&allowed).unwrap().build().unwrap();
+    // p + 1 is accepted as it is.
+    let text = base_with(
+        "plane = \"stress\" }\n\n[[body]]",
+        "plane = \"stress\" }\nquadrature = 3\n\n[[body]]",
+    );
+    Scene::from_toml_str(&text).unwrap();
+
+    let text = base_with(
+        "side = \"eta_max\" }\n",
+        "side = \"eta_max\" }\nnitsche = { gauss_points = 2 }\n",
+    );
+    let msg = rejects(&text, "contact[0].nitsche.gauss_points", "2");
+    assert!(msg.contains("allow_underintegration"), "{msg}");
+    Scene::from_toml_str(&format!("allow_underintegration = true\n{text}")).unwrap();
+}
+
+/// Largest |σ_yy / σ_exact − 1| of the Taylor scene over a 5 × 5 sampling
+/// of every element, with the given body and contact quadrature.
+/// `None` if the solve fails.
+fn taylor_syy_error(quadrature: usize, gauss_points: usize) -> Option<f64> {
+    let text = format!(
+        "allow_underintegration = true\n{}",
+        scene_file("taylor.toml")
+    )
+    .replace(
+        "plane = \"stress\" }\n",
+        &format!("plane = \"stress\" }}\nquadrature = {quadrature}\n"),
+    )
+    .replace(
+        "integration = \"segment\" }",
+        &format!("integration = \"segment\", gauss_points = {gauss_points} }}"),
+    );
+    let scene = Scene::from_toml_str(&text).unwrap();
+    let problem = scene.build().unwrap();
+    let solution = solver::solve(&problem, &scene.solver).ok()?;
+    let mesh =
+        iga_contact::report::vtu::sample_bodies(&problem.bodies, &problem.map, &solution.full, 4)
+            .unwrap();
+    let stress = mesh.field("stress").unwrap();
+    Some(
+        stress
+            .values
+            .chunks(3)
+            .map(|s| (s[1] / -1e8 - 1.0).abs())
+            .fold(0.0, f64::max),
+    )
+}
+
+#[test]
+fn the_taylor_patch_test_is_exact_at_the_minimum_quadrature() {
+    // Degree 2: the minimum is p + 1 = 3 points for the bodies and the contact.
+    let at_minimum = taylor_syy_error(3, 3).expect("solves at the minimum");
+    assert!(
+        at_minimum < 1e-9,
+        "σ_yy off by {at_minimum:e} at the minimum"
+    );
+    // Below it, hourglass modes: no solution, or a wrong stress field.
+    let one_point = taylor_syy_error(1, 3);
+    assert!(
+        one_point.is_none_or(|e| e > 1e-2),
+        "σ_yy off by only {one_point:?} with one point"
+    );
+    eprintln!("Taylor σ_yy error: {at_minimum:.1e} at (3, 3), {one_point:?} at (1, 3)");
+}
+
+#[test]
+fn input_scales_beyond_double_precision_are_named_as_such() {
+    let text =
+        block_on_floor("[[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n");
+    let tiny = text.replace("young = 1.0e6", "young = 1e-300");
+    let msg = rejects(&tiny, "body[0].material.young", "1e-300");
+    assert!(msg.contains("underflows"), "{msg}");
+    assert!(!msg.contains("diverged"), "{msg}");
+    let huge = text.replace("pressure = 1.0e4", "pressure = 1e200");
+    let msg = rejects(&huge, "load[0].pressure.pressure", "1e200");
+    assert!(msg.contains("overflows"), "{msg}");
+    // A soft material under a large load: the displacements overflow.
+    let soft = text
+        .replace("young = 1.0e6", "young = 1e-100")
+        .replace("pressure = 1.0e4", "pressure = 1e100");
+    let msg = rejects(&soft, "load[0].pressure.pressure", "1e100");
+    assert!(msg.contains("displacements would be of order"), "{msg}");
+    // A geometry too large to differentiate over.
+    let big = one_body(
+        "{ full_disk = { center = [0.0, 0.0], radius = 1e200 } }",
+        "",
+    );
+    let msg = rejects(&big, "body[0].geometry.full_disk.radius", "1e200");
+    assert!(msg.contains("overflows"), "{msg}");
+}
+
+#[test]
+fn geometry_errors_name_the_body() {
+    // A bow-tie control net: the map folds.
+    let text = one_body(
+        "{ nurbs = { degree = [1, 1], knots_xi = [0.0, 0.0, 1.0, 1.0], \
+           knots_eta = [0.0, 0.0, 1.0, 1.0], \
+           control_points = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] } }",
+        "",
+    )
+    .replace("\"b\"", "\"bowtie\"");
+    let Err(e) = Scene::from_toml_str(&text).unwrap().build() else {
+        panic!("a folded map was accepted");
+    };
+    let msg = e.to_string();
+    assert!(matches!(e, Error::Geometry(_)), "{msg}");
+    assert!(msg.contains("body[0] (\"bowtie\")"), "{msg}");
+}
+
+#[test]
+fn a_degenerate_slave_side_is_not_reported_as_the_master() {
+    // A quadratic bottom side whose first two control points coincide: its
+    // tangent vanishes at t = 0, where the floor's end projects.
+    let text = r#"
+[[body]]
+name = "pinched"
+geometry = { nurbs = { degree = [2, 1], knots_xi = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0], knots_eta = [0.0, 0.0, 1.0, 1.0], control_points = [[0.0, 0.0], [0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 1.0], [1.0, 1.0]] } }
+material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
+
+[[support]]
+body = "pinched"
+side = "xi_min"
+component = "x"
+
+[[contact]]
+slave = "pinched"
+slave_side = "eta_min"
+master = { rigid_segment = { from = [-0.5, 0.0], to = [1.5, 0.0] } }
+"#;
+    let Err(e) = Scene::from_toml_str(text).and_then(|s| s.build()) else {
+        panic!("a side with a vanishing tangent was accepted");
+    };
+    let msg = e.to_string();
+    assert!(!msg.contains("master"), "{msg}");
+    assert!(
+        msg.contains("contact[0]: the slave side eta_min of body \"pinched\"")
+            && msg.contains("degenerate"),
+        "{msg}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// What outputs write
+// ---------------------------------------------------------------------------
+
+/// Every number-like token of `text` that is a negative zero.
+fn negative_zeros(text: &str) -> Vec<String> {
+    text.split(|c: char| c.is_whitespace() || ",;=[]{}\"<>".contains(c))
+        .filter(|t| t.starts_with('-'))
+        .filter(|t| t.parse::<f64>().is_ok_and(|v| v == 0.0))
+        .map(String::from)
+        .collect()
+}
+
+#[test]
+fn a_zero_load_run_reports_residual_zero_and_no_output_has_negative_zeros() {
+    let dir = tmp("zero-load");
+    let held = "[[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
+    let text = block_on_floor(held).replace("pressure = 1.0e4", "pressure = 0.0")
+        + "\n[output]\nsummary = true\npressure_profile = true\nvtu = true\niterations = true\n";
+    Scene::from_toml_str(&text).unwrap().run(&dir).unwrap();
+    let summary: toml::Table =
+        toml::from_str(&std::fs::read_to_string(dir.join(files::SUMMARY)).unwrap()).unwrap();
+    assert_eq!(
+        summary["relative_residual"].as_float(),
+        Some(0.0),
+        "{summary}"
+    );
+    for f in listing(&dir) {
+        let text = std::fs::read_to_string(dir.join(&f)).unwrap();
+        assert!(
+            negative_zeros(&text).is_empty(),
+            "{f}: {:?}",
+            negative_zeros(&text)
+        );
+    }
+    // A loaded run: pressures of open points are zero, never −0.
+    let dir = tmp("no-negative-zeros");
+    Scene::from_toml_str(&scene_file("hertz.toml"))
+        .unwrap()
+        .run(&dir)
+        .unwrap();
+    for f in listing(&dir) {
+        let text = std::fs::read_to_string(dir.join(&f)).unwrap();
+        assert!(
+            negative_zeros(&text).is_empty(),
+            "{f}: {:?}",
+            negative_zeros(&text)
+        );
+    }
+}
+
+#[test]
+fn titles_with_control_characters_still_give_well_formed_xml() {
+    let dir = tmp("xml-title");
+    let text = scene_file("hertz.toml").replace(
+        "title = \"Hertz contact, IGA p = 2, 8 × 8\"",
+        "title = \"nul \\u0000, bell \\u0007, <tag> & \\\"quotes\\\" \\u001b[31m\"",
+    );
+    let scene = Scene::from_toml_str(&text).unwrap();
+    assert!(scene.title.as_deref().unwrap().contains('\u{0}'));
+    scene.run(&dir).unwrap();
+    for f in [files::FIGURE, files::VTU] {
+        let xml = std::fs::read_to_string(dir.join(f)).unwrap();
+        if let Err(e) = roxmltree::Document::parse(&xml) {
+            panic!("{f} is not well-formed XML: {e}");
+        }
+    }
+    let svg = std::fs::read_to_string(dir.join(files::FIGURE)).unwrap();
+    assert!(svg.contains("&lt;tag&gt; &amp;"), "markup not escaped");
 }

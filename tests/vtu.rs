@@ -354,3 +354,30 @@ fn bad_arguments_are_named() {
         .to_string();
     assert!(err.contains("vtu.bodies"), "{err}");
 }
+
+#[test]
+fn any_field_name_gives_well_formed_xml_and_no_negative_zero() {
+    let mut mesh = tricky_floats_mesh();
+    mesh.point_data[0].name = "nul \u{0} bell \u{7} esc \u{1b} <&>\"' tab\tnewline\n".into();
+    let xml = mesh.to_xml();
+    let doc = match roxmltree::Document::parse(&xml) {
+        Ok(d) => d,
+        Err(e) => panic!("not well-formed: {e}"),
+    };
+    // The markup and white space survive; only what XML cannot hold is replaced.
+    let name = doc
+        .descendants()
+        .find_map(|n| n.attribute("Name").filter(|v| v.starts_with("nul")))
+        .unwrap();
+    assert_eq!(
+        name,
+        "nul \u{FFFD} bell \u{FFFD} esc \u{FFFD} <&>\"' tab\tnewline\n"
+    );
+    // −0 is written as 0.
+    for token in xml.split_whitespace() {
+        assert!(
+            !token.starts_with("-0.0") || token.parse::<f64>().unwrap() != 0.0,
+            "{token}"
+        );
+    }
+}

@@ -221,7 +221,7 @@ fn main() -> Result<()> {
         let r = run(2, n, "newton", &newton_opts)?.map_err(|f| not_converged(&f))?;
         profiles.push((n, PressureProfile::dense(&r.problem, &r.solution.full)?));
     }
-    profile_outputs(&chapter, &profiles, &exact)?;
+    profile_outputs(&mut chapter, &profiles, &exact)?;
 
     // ANCHOR: facts
     let f = chapter.facts();
@@ -725,7 +725,7 @@ fn convergence_figures(
 
 /// The dense profiles as a table and a figure, up to 1.5 a.
 fn profile_outputs(
-    chapter: &Chapter,
+    chapter: &mut Chapter,
     profiles: &[(usize, PressureProfile)],
     exact: &Hertz,
 ) -> Result<()> {

@@ -216,7 +216,8 @@ fn one_side(
     let slave_curve = slave.space.patch.side_curve(pair.slave_side);
     let cuts = match pair.nitsche.integration {
         Integration::Gauss => Vec::new(),
-        Integration::Segment => projected_master_knots(master.curve(), &slave_curve)?,
+        Integration::Segment => projected_master_knots(master.curve(), &slave_curve)
+            .map_err(|e| within(e, ip, &slave_side(pair, bodies)))?,
     };
     for be in slave.space.boundary(pair.slave_side) {
         let first = out.len();
@@ -278,6 +279,16 @@ fn set_trace_constant(
         &rigid_modes(&cps),
         points.iter().map(|cp| (cp.weight, cp.sn.as_slice())),
     )?;
+    if nitsche.penalty == Penalty::Sharp && !c.is_finite() {
+        return Err(Error::invalid(
+            "nitsche.penalty",
+            "sharp",
+            format!(
+                "element {} has modes of no energy that carry normal stress (under-integrated?), so no sharp bound exists",
+                be.element
+            ),
+        ));
+    }
     for cp in points {
         cp.trace_constant = c;
         if nitsche.penalty == Penalty::Sharp {
@@ -285,6 +296,23 @@ fn set_trace_constant(
         }
     }
     Ok(())
+}
+
+/// Words for the slave side of a pair, for messages.
+fn slave_side(pair: &ContactPair, bodies: &[Body]) -> String {
+    format!(
+        "the slave side {} of body {:?}",
+        pair.slave_side.name(),
+        bodies[pair.slave].name
+    )
+}
+
+/// A geometry error of contact pair `ip`, told as happening on `what`.
+fn within(e: Error, ip: usize, what: &str) -> Error {
+    match e {
+        Error::Geometry(m) => Error::Geometry(format!("contact[{ip}]: {what}: {m}")),
+        other => other,
+    }
 }
 
 fn max_degree(b: &Body) -> usize {
@@ -319,9 +347,21 @@ fn make_point(
 ) -> Result<Option<ContactPoint>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
-    let (shape, _, len) = space.side_shape(be, t)?;
+    let (shape, _, len) = space
+        .side_shape(be, t)
+        .map_err(|e| within(e, ip, &slave_side(pair, bodies)))?;
     let x = shape.x;
-    let pr: Projection = closest_point(master.curve(), x)?;
+    let pr: Projection = closest_point(master.curve(), x).map_err(|e| {
+        let what = match master {
+            MasterGeometry::Rigid(_) => "the rigid master curve".to_string(),
+            MasterGeometry::Body { body, side, .. } => format!(
+                "the master side {} of body {:?}",
+                side.name(),
+                bodies[*body].name
+            ),
+        };
+        within(e, ip, &what)
+    })?;
     if !pr.orthogonal {
         return Ok(None);
     }

@@ -6,7 +6,7 @@
 //! Chouly–Hild write the reciprocal, a compliance γ₀h, so "small γ" there
 //! means a large one here.)
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// Inputs of Eq. (11) at one contact quadrature point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,7 +48,10 @@ pub fn empirical_penalty(inp: PenaltyInputs, factor: f64) -> f64 {
 /// eigenvalue of the small k × k matrix Wᵀ (a_e + R Rᵀ)⁻¹ W (k points): the
 /// rigid modes make the stiffness invertible without changing it on the
 /// functionals. Cost: one dense Cholesky of 2n × 2n and a k × k
-/// eigenproblem, with nalgebra.
+/// eigenproblem, with nalgebra. Where the Cholesky fails (round-off at high
+/// degree, or an under-integrated element with zero-energy modes) the
+/// eigenpairs of the regularised stiffness take over; if a mode of no
+/// energy carries normal stress, no bound exists and the constant is ∞.
 pub fn trace_constant<'a>(
     stiffness: &nalgebra::DMatrix<f64>,
     rigid: &nalgebra::DMatrix<f64>,
@@ -71,10 +74,29 @@ pub fn trace_constant<'a>(
             .fold(0.0, f64::max)
             .max(f64::MIN_POSITIVE);
     let regular = stiffness + scale * rigid * rigid.transpose();
-    let chol = regular.cholesky().ok_or_else(|| {
-        Error::Singular("the element stiffness is singular beyond its rigid motions".into())
-    })?;
-    let small = w.transpose() * chol.solve(&w);
+    let small = match regular.clone().cholesky() {
+        Some(chol) => w.transpose() * chol.solve(&w),
+        None => {
+            // Round-off at high degree, or zero-energy modes beyond the rigid
+            // ones (an under-integrated element): eigenpairs, and a mode of
+            // no energy that carries normal stress makes the constant infinite.
+            let eig = regular.symmetric_eigen();
+            let top = eig.eigenvalues.amax();
+            let mut small = nalgebra::DMatrix::<f64>::zeros(columns.len(), columns.len());
+            let wnorm = w.norm();
+            for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
+                let proj = w.transpose() * eig.eigenvectors.column(k);
+                if lambda <= 1e-12 * top {
+                    if proj.norm() > 1e-8 * wnorm {
+                        return Ok(f64::INFINITY);
+                    }
+                    continue;
+                }
+                small += &proj * proj.transpose() / lambda;
+            }
+            small
+        }
+    };
     let small = 0.5 * (&small + small.transpose());
     Ok(small.symmetric_eigen().eigenvalues.max().max(0.0))
 }

@@ -84,7 +84,7 @@ pub fn closest_point(curve: &NurbsCurve, x: [f64; 2]) -> Result<Projection> {
     let len = dc[0].hypot(dc[1]);
     if len.is_nan() || len <= 0.0 || !c[0].is_finite() || !c[1].is_finite() {
         return Err(Error::Geometry(format!(
-            "projection of {x:?} failed: degenerate master curve at t = {t}"
+            "cannot project {x:?}: the curve is degenerate at t = {t} (zero tangent)"
         )));
     }
     let tangent = [dc[0] / len, dc[1] / len];

@@ -2,6 +2,7 @@
 //! and exact refinement (Eq. 1).
 
 pub mod curve;
+pub mod interpolate;
 pub mod knots;
 pub mod patch;
 pub mod refine;

@@ -2,7 +2,7 @@
 //! what a chapter program writes — tables (CSV + Markdown), texts, figures
 //! and the facts its prose quotes.
 
-use super::atomic::write_text;
+use super::atomic::{install_signal_cleanup, OutputSet};
 use super::facts::{self, Facts};
 use super::table::Table;
 use crate::error::{Error, Result};
@@ -63,21 +63,20 @@ pub const PROGRAMS: [Program; 9] = [
 
 /// Where a chapter program writes, and the facts it collects on the way.
 ///
-/// A chapter's outputs form one set: every file is written into a staging
-/// folder beside the target, and [`Chapter::finish`] swaps the staging
-/// folder in for the old one. Until then the earlier results stay as they
-/// were; a program that fails leaves them untouched, and files that a
-/// program no longer writes do not linger.
+/// A chapter's outputs form one set ([`OutputSet`]): every file is staged
+/// beside the target, and [`Chapter::finish`] swaps the whole set in. Until
+/// then the earlier results stay as they were; a program that fails, or is
+/// interrupted, leaves them untouched, and files that a program no longer
+/// writes do not linger.
 pub struct Chapter {
-    dir: PathBuf,
-    staging: PathBuf,
+    set: OutputSet,
     facts: Facts,
     /// Files that hold wall-clock times (see [`Chapter::timed`]).
     timed: Vec<String>,
 }
 
-/// The name of the manifest a chapter program writes beside its outputs.
-pub const MANIFEST: &str = "manifest.toml";
+/// The name of the file that lists a chapter's timed outputs.
+pub const TIMED: &str = "timed.toml";
 
 /// What [`Chapter::finish`] records about the outputs: which files and
 /// facts hold wall-clock times, and so differ from run to run. Everything
@@ -90,21 +89,23 @@ pub struct Manifest {
 }
 
 impl Manifest {
-    /// Reads `<dir>/manifest.toml`.
+    /// Reads `<dir>/timed.toml`.
     pub fn load(dir: &Path) -> Result<Self> {
-        let path = dir.join(MANIFEST);
+        let path = dir.join(TIMED);
         let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
             path: path.display().to_string(),
             source,
         })?;
         toml::from_str(&text)
-            .map_err(|e| Error::invalid(path.display().to_string(), "manifest", e.to_string()))
+            .map_err(|e| Error::invalid(path.display().to_string(), "timed outputs", e.to_string()))
     }
 }
 
 impl Chapter {
     /// The chapter `name`, written to `book/src/generated/<name>`, or to the
-    /// directory given on the command line as `--out DIR`.
+    /// directory given on the command line as `--out DIR`. Checks now that
+    /// the folder can take the outputs (fail fast), and removes the staging
+    /// of an interrupted run on SIGINT or SIGTERM.
     pub fn from_args(name: &str) -> Result<Self> {
         let mut args = std::env::args().skip(1);
         let mut dir = generated_root().join(name);
@@ -125,29 +126,14 @@ impl Chapter {
                 }
             }
         }
+        install_signal_cleanup()?;
         Self::at(dir)
     }
 
-    /// A chapter written to `dir`; fails early if the staging folder
-    /// beside it cannot be created.
+    /// A chapter written to `dir`.
     pub fn at(dir: impl Into<PathBuf>) -> Result<Self> {
-        let dir = dir.into();
-        let name = dir
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .ok_or_else(|| Error::invalid("--out", dir.display(), "needs a folder name"))?;
-        let staging = dir.with_file_name(format!(".{name}.staging.{}", std::process::id()));
-        let io = |p: &Path| {
-            let p = p.display().to_string();
-            move |source| Error::Io { path: p, source }
-        };
-        if staging.exists() {
-            std::fs::remove_dir_all(&staging).map_err(io(&staging))?;
-        }
-        std::fs::create_dir_all(&staging).map_err(io(&staging))?;
         Ok(Self {
-            dir,
-            staging,
+            set: OutputSet::begin(dir.into())?,
             facts: Facts::new(),
             timed: Vec::new(),
         })
@@ -155,29 +141,29 @@ impl Chapter {
 
     /// The folder the chapter's files end up in.
     pub fn dir(&self) -> &Path {
-        &self.dir
+        self.set.target()
     }
 
     /// The path an output file is written to now (in the staging folder),
     /// for figures drawn straight to disk.
     pub fn path(&self, file: &str) -> PathBuf {
-        self.staging.join(file)
+        self.set.dir().join(file)
     }
 
     /// Writes `<stem>.csv` and `<stem>.md`.
-    pub fn table(&self, stem: &str, table: &Table) -> Result<()> {
+    pub fn table(&mut self, stem: &str, table: &Table) -> Result<()> {
         self.csv(stem, table)?;
-        write_text(self.path(&format!("{stem}.md")), &table.to_markdown())
+        self.text(&format!("{stem}.md"), &table.to_markdown())
     }
 
     /// Writes only `<stem>.csv` (for tables too long to read in the book).
-    pub fn csv(&self, stem: &str, table: &Table) -> Result<()> {
-        write_text(self.path(&format!("{stem}.csv")), &table.to_csv())
+    pub fn csv(&mut self, stem: &str, table: &Table) -> Result<()> {
+        self.text(&format!("{stem}.csv"), &table.to_csv())
     }
 
     /// Writes a text file.
-    pub fn text(&self, file: &str, text: &str) -> Result<()> {
-        write_text(self.path(file), text)
+    pub fn text(&mut self, file: &str, text: &str) -> Result<()> {
+        self.set.stage(file, text.as_bytes()).map(|_| ())
     }
 
     /// Marks `file` as holding wall-clock times: it changes from run to run.
@@ -190,29 +176,18 @@ impl Chapter {
         &mut self.facts
     }
 
-    /// Writes the facts file and the manifest, and swaps the complete set of
-    /// files in.
-    pub fn finish(self) -> Result<()> {
-        write_text(self.path(facts::FILE), &self.facts.to_text())?;
+    /// Writes the facts and the list of timed outputs, and swaps the
+    /// complete set of files in.
+    pub fn finish(mut self) -> Result<()> {
+        let facts = self.facts.to_text();
+        self.text(facts::FILE, &facts)?;
         let manifest = Manifest {
             timed_files: self.timed.clone(),
             timed_facts: self.facts.timed_keys().map(String::from).collect(),
         };
         let text = toml::to_string(&manifest)
-            .map_err(|e| Error::invalid(MANIFEST, "manifest", e.to_string()))?;
-        write_text(self.path(MANIFEST), &text)?;
-        let io = |p: &Path| {
-            let p = p.display().to_string();
-            move |source| Error::Io { path: p, source }
-        };
-        let old = self.staging.with_extension("old");
-        if self.dir.exists() {
-            std::fs::rename(&self.dir, &old).map_err(io(&self.dir))?;
-        }
-        std::fs::rename(&self.staging, &self.dir).map_err(io(&self.dir))?;
-        if old.exists() {
-            std::fs::remove_dir_all(&old).map_err(io(&old))?;
-        }
-        Ok(())
+            .map_err(|e| Error::invalid(TIMED, "timed outputs", e.to_string()))?;
+        self.text(TIMED, &text)?;
+        self.set.commit().map(|_| ())
     }
 }

@@ -930,7 +930,9 @@ fn render(path: &Path, fig: &impl Figure) -> Result<()> {
             fig.draw(&root).map_err(|e| failed(e.to_string()))?;
             root.present().map_err(|e| failed(e.to_string()))?;
         }
-        return write_atomic(path, svg.as_bytes());
+        // plotters escapes markup but passes control characters through,
+        // which no XML reader accepts.
+        return write_atomic(path, crate::report::xml_safe(&svg).as_bytes());
     }
     // The bitmap backend can only encode to a file; render next to the target
     // and move the bytes through write_atomic like every other output.

@@ -48,7 +48,8 @@ pub struct VtuMesh {
 /// Appends `v` with the shortest digits that parse back to the same f64, so
 /// the file is exact without the noise of 17 fixed digits.
 fn push_f64(out: &mut String, v: f64) {
-    let _ = write!(out, "{v:?}");
+    // + 0.0 turns −0 into +0: no output shows a negative zero.
+    let _ = write!(out, "{:?}", v + 0.0);
 }
 
 /// Field names end up in XML attributes and JSON strings; escaping here
@@ -62,6 +63,11 @@ fn xml_escape(s: &str) -> String {
             '>' => out.push_str("&gt;"),
             '"' => out.push_str("&quot;"),
             '\'' => out.push_str("&apos;"),
+            // In an attribute, white space would be normalised away.
+            '\t' | '\n' | '\r' => {
+                let _ = write!(out, "&#{};", c as u32);
+            }
+            c if !crate::report::xml_char_allowed(c) => out.push('\u{FFFD}'),
             c => out.push(c),
         }
     }
