@@ -8,6 +8,7 @@ pub mod assembly;
 pub mod benchmarks;
 #[doc(hidden)]
 pub mod book;
+pub mod condense;
 pub mod contact;
 pub mod dofs;
 pub mod error;

@@ -3,7 +3,7 @@
 //! the free DOFs.
 
 use crate::assembly::{load_vector, stiffness, Load, Triplets};
-use crate::contact::nitsche::{add_internal_force, heaviside, local_matrix};
+use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
@@ -18,6 +18,10 @@ pub enum Kernel<'a> {
     Tied,
     /// Eq. (18)–(19): active set of P at the given free displacement.
     Secant(&'a [f64]),
+    /// H given per contact point (1 active, 0 inactive): the secant
+    /// kernel of an active set chosen by the caller (see the floating
+    /// guard of [`crate::solver`]).
+    Activity(&'a [f64]),
 }
 
 /// Everything needed to evaluate R(u) and the kernels.
@@ -122,14 +126,45 @@ impl Problem {
     fn activity(&self, kind: Kernel) -> Vec<f64> {
         match kind {
             Kernel::Tied => vec![1.0; self.points.len()],
-            Kernel::Secant(u) => {
-                let full = self.map.expand(u);
-                self.points
-                    .iter()
-                    .map(|cp| heaviside(cp.p(&full)))
-                    .collect()
+            Kernel::Secant(u) => self.p_values(u).into_iter().map(heaviside).collect(),
+            Kernel::Activity(h) => h.to_vec(),
+        }
+    }
+
+    /// P(u) = σ_n + γ g_n at every contact point, for the free displacement `u`.
+    pub fn p_values(&self, u: &[f64]) -> Vec<f64> {
+        let full = self.map.expand(u);
+        self.points.iter().map(|cp| cp.p(&full)).collect()
+    }
+
+    /// The free DOFs that some contact functional (σ_n or ⟦u_n⟧) reaches,
+    /// increasing: the layer L on which every contact term lives.
+    pub fn layer(&self) -> Vec<usize> {
+        let mut on = vec![false; self.n()];
+        for cp in &self.points {
+            for (k, &d) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self
+                    .map
+                    .free(d)
+                    .filter(|_| cp.sn[k] != 0.0 || cp.jn[k] != 0.0)
+                {
+                    on[i] = true;
+                }
             }
         }
+        (0..self.n()).filter(|&i| on[i]).collect()
+    }
+
+    /// A₀ = K + Σ_q w γ jn jnᵀ over every contact point (free DOFs): the
+    /// bulk stiffness plus the penalty term of the whole potential contact
+    /// boundary, symmetric positive definite whenever contact everywhere
+    /// holds the bodies. Every kernel (17)–(18), of every θ and active
+    /// set, is A₀ plus a matrix on the [`Problem::layer`].
+    pub fn bulk_plus_penalty(&self) -> Result<SparseColMat<usize, f64>> {
+        self.with_bulk(Self::contact_triplets(&self.map, &self.points, |_, cp| {
+            let w = cp.weight * cp.gamma;
+            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| w * cp.jn[a] * cp.jn[b])
+        }))
     }
 
     /// A matrix of the kernels' pattern: the bulk stiffness plus `contact`.
@@ -235,15 +270,28 @@ impl Problem {
     /// The residual (13), R(u) = L(v) − a(u, v) + contact work, over the
     /// free DOFs, and the contact state.
     pub fn residual(&self, u: &[f64]) -> (Vec<f64>, ContactState) {
+        self.residual_forced(u, &[])
+    }
+
+    /// As [`Problem::residual`], with the points marked in `forced` (empty:
+    /// none) treated as active whatever the sign of P: their contact force
+    /// is that of the tied law, [P]₋ replaced by P. This is the residual
+    /// whose linearisation is the secant kernel with those points active,
+    /// so a step with it closes their gap (the floating guard).
+    pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState) {
         let full = self.map.expand(u);
         let ku = mul(&self.k, u);
         let mut r: Vec<f64> = self.rhs.iter().zip(&ku).map(|(f, k)| f - k).collect();
         let mut active = 0;
         let mut g = Vec::new();
-        for cp in &self.points {
+        for (q, cp) in self.points.iter().enumerate() {
             g.clear();
             g.resize(cp.dofs.len(), 0.0);
-            if add_internal_force(cp, &full, &mut g) <= 0.0 {
+            let law = match forced.get(q) {
+                Some(true) => Law::Tied,
+                _ => Law::Contact,
+            };
+            if add_force(cp, &full, &mut g, law) <= 0.0 {
                 active += 1;
             }
             for (k, &dof) in cp.dofs.iter().enumerate() {
@@ -253,6 +301,32 @@ impl Problem {
             }
         }
         (r, ContactState { active })
+    }
+
+    /// The round-off of evaluating R at `u`: ε ‖ |f| + |K||u| + |g_c| ‖,
+    /// the sum of the magnitudes of every term of every component.
+    pub fn residual_floor(&self, u: &[f64]) -> f64 {
+        let full = self.map.expand(u);
+        let mut size: Vec<f64> = self.rhs.iter().map(|v| v.abs()).collect();
+        let s = self.k.symbolic();
+        let (ptr, idx, val) = (s.col_ptr(), s.row_idx(), self.k.val());
+        for j in 0..self.n() {
+            for k in ptr[j]..ptr[j + 1] {
+                size[idx[k]] += (val[k] * u[j]).abs();
+            }
+        }
+        let mut g = Vec::new();
+        for cp in &self.points {
+            g.clear();
+            g.resize(cp.dofs.len(), 0.0);
+            add_force(cp, &full, &mut g, Law::Contact);
+            for (k, &dof) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self.map.free(dof) {
+                    size[i] += g[k].abs();
+                }
+            }
+        }
+        f64::EPSILON * size.iter().map(|x| x * x).sum::<f64>().sqrt()
     }
 
     /// Rigid-body modes (full-length vectors, one per mode) that the

@@ -1,10 +1,12 @@
-//! The kernels (17)–(18) factorised two exact ways: sparse LU of the
-//! assembled matrix, and Cholesky of its symmetric positive definite part
-//! with the Sherman–Morrison–Woodbury correction of the trace rows.
+//! The kernels (17)–(18) factorised on their own, two exact ways: sparse LU
+//! of the assembled matrix, and Cholesky of its symmetric positive definite
+//! part with the Sherman–Morrison–Woodbury correction of the trace rows;
+//! and the whole-body solves of both against the factorise-once default
+//! (tests/condense.rs checks the condensation itself).
 
 mod common;
 
-use common::{perturbed_solution, rough};
+use common::{assert_same_iteration, perturbed_solution, rough};
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::contact::Integration;
 use iga_contact::linsolve::{mul, mul_transpose, Factor, Factoriser, Method};
@@ -89,7 +91,8 @@ fn the_low_rank_solve_equals_lu() {
         for kind in [Kernel::Tied, Kernel::Secant(&u)] {
             let mut fac = Factoriser::default();
             let mut events = Vec::new();
-            let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto, &mut events).unwrap();
+            let low =
+                factor_kernel(&p, &mut fac, kind, Factorisation::LowRank, &mut events).unwrap();
             assert!(events.is_empty(), "θ = {theta}: {events:?}");
             assert!(
                 matches!(low, Factor::LowRank(_)),
@@ -179,7 +182,7 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
         &p,
         &mut Factoriser::default(),
         Kernel::Secant(&u),
-        Factorisation::Auto,
+        Factorisation::LowRank,
         &mut events,
     );
     assert_eq!(events, vec![Event::KernelLuFallback]);
@@ -198,13 +201,25 @@ fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
     }
     .build_with(Taylor::material(), upper, 1.0)
     .unwrap();
-    let s = solve(&p, &SolverOptions::default()).unwrap();
+    // the damped BFGS over the whole body, as before the condensation
+    let body = SolverOptions {
+        line_search_after: 0,
+        ..SolverOptions::paper()
+    };
+    let s = solve(
+        &p,
+        &SolverOptions {
+            factorisation: Factorisation::LowRank,
+            ..body
+        },
+    )
+    .unwrap();
     assert!(s.history.count(|e| *e == Event::KernelRefined) >= 1);
     let lu = solve(
         &p,
         &SolverOptions {
             factorisation: Factorisation::Lu,
-            ..SolverOptions::default()
+            ..body
         },
     )
     .unwrap();
@@ -224,25 +239,36 @@ fn both_factorisations_give_the_same_solutions() {
         ("hertz 8², θ = −1", hertz(8, -1.0)),
         ("taylor", taylor),
     ];
+    let damped = SolverOptions {
+        line_search_after: 0,
+        ..SolverOptions::paper()
+    };
+    let newton = SolverOptions {
+        kind: SolverKind::Newton,
+        ..damped
+    };
     for (name, p) in cases {
-        for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        for (label, opts) in [("bfgs", damped), ("newton", newton)] {
             let run = |how| {
                 solve(
                     &p,
                     &SolverOptions {
                         factorisation: how,
-                        ..SolverOptions::with_kind(kind)
+                        ..opts
                     },
                 )
                 .unwrap()
             };
-            let (a, b) = (run(Factorisation::Auto), run(Factorisation::Lu));
-            assert!(
-                diff(&a.u, &b.u) <= 1e-10,
-                "{name} {kind:?}: {:.2e}",
-                diff(&a.u, &b.u)
-            );
-            assert_eq!(a.history.len(), b.history.len(), "{name} {kind:?}");
+            let lu = run(Factorisation::Lu);
+            for how in [Factorisation::Auto, Factorisation::LowRank] {
+                let a = run(how);
+                assert!(
+                    diff(&a.u, &lu.u) <= 1e-10,
+                    "{name} {label} {how:?}: {:.2e}",
+                    diff(&a.u, &lu.u)
+                );
+                assert_same_iteration(&a.history, &lu.history, &format!("{name} {label} {how:?}"));
+            }
         }
     }
 }

@@ -11,7 +11,8 @@ pub enum Event {
     SkippedUpdate { curvature: f64 },
     /// The line search halved the step this many times.
     LineSearchCuts(usize),
-    /// The active set was empty, so the tied kernel (17) replaced the singular secant (18).
+    /// The active set did not hold a floating body, so the nearest contact
+    /// points were made active (and pulled onto the obstacle).
     FloatingGuard,
     /// A kernel factorised by Cholesky plus the low-rank correction failed
     /// the plain accuracy check, so its solves refine iteratively.
@@ -71,8 +72,15 @@ impl History {
         self.rows.is_empty()
     }
 
+    /// The relative residual of the last iteration; with no iteration, 0
+    /// if the start was already converged (R₀ = 0, e.g. no load) and 1
+    /// otherwise.
     pub fn last_relative_residual(&self) -> f64 {
-        self.rows.last().map_or(1.0, |r| r.relative_residual)
+        match self.rows.last() {
+            Some(r) => r.relative_residual,
+            None if self.initial_residual == 0.0 => 0.0,
+            None => 1.0,
+        }
     }
 
     /// Number of iterations that carry `pred`.
