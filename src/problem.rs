@@ -2,12 +2,12 @@
 //! and the residual (13) and kernels (17)–(18) the solvers need, all over
 //! the free DOFs.
 
-use crate::assembly::{load_vector, stiffness, Load, Triplets};
+use crate::assembly::{load_vector, stiffness_matrix, Load, Triplets};
 use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
-use crate::linsolve::{mul, Pattern};
+use crate::linsolve::mul;
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
 
@@ -32,12 +32,9 @@ pub struct Problem {
     pub points: Vec<ContactPoint>,
     /// F − K_fc ū over the free DOFs.
     pub rhs: Vec<f64>,
-    /// Bulk stiffness over the free DOFs.
+    /// Bulk stiffness over the free DOFs, in the kernels' pattern (the
+    /// contact couplings between bodies stored as zeros).
     pub k: SparseColMat<usize, f64>,
-    /// The bulk stiffness triplet values, in the order of the pattern.
-    bulk: Vec<f64>,
-    /// The kernels' pattern: bulk triplets, then the contact blocks.
-    pattern: Pattern,
 }
 
 /// A kernel written as S + U Vᵀ: see [`Problem::kernel_split`].
@@ -71,12 +68,6 @@ impl Problem {
         loads: &[Load],
         pairs: Vec<ContactPair>,
     ) -> Result<Self> {
-        let (bulk, lift) = stiffness(&bodies, &map)?;
-        let mut rhs = load_vector(&bodies, &map, loads)?;
-        for (r, l) in rhs.iter_mut().zip(&lift) {
-            *r -= l;
-        }
-        let points = contact_points(&bodies, &map, &pairs)?;
         let n = map.n_free();
         if n == 0 {
             return Err(Error::invalid(
@@ -85,13 +76,22 @@ impl Problem {
                 "every degree of freedom is prescribed",
             ));
         }
+        let points = contact_points(&bodies, &map, &pairs)?;
         // One pattern for everything: the bulk stiffness is stored in the
-        // kernels' pattern with zero contact entries, which saves a second
-        // symbolic analysis of the largest triplet set.
-        let contact = Self::contact_triplets(&map, &points, |_, cp| local_matrix(cp, 1.0));
-        let pattern = Pattern::new(n, &[&bulk, &contact])?;
-        let k = pattern.matrix(&[&bulk.vals, &vec![0.0; contact.len()]])?;
-        let bulk = bulk.vals;
+        // kernels' pattern, with zeros where only contact couples two DOFs
+        // (two bodies), so every kernel has the same symbolic structure.
+        let mut couplings = Vec::new();
+        for cp in &points {
+            let free: Vec<usize> = cp.dofs.iter().filter_map(|&d| map.free(d)).collect();
+            for &i in &free {
+                couplings.extend(free.iter().map(|&j| (i, j)));
+            }
+        }
+        let (k, lift) = stiffness_matrix(&bodies, &map, &couplings)?;
+        let mut rhs = load_vector(&bodies, &map, loads)?;
+        for (r, l) in rhs.iter_mut().zip(&lift) {
+            *r -= l;
+        }
         Ok(Self {
             bodies,
             map,
@@ -99,8 +99,6 @@ impl Problem {
             points,
             rhs,
             k,
-            bulk,
-            pattern,
         })
     }
 
@@ -169,7 +167,17 @@ impl Problem {
 
     /// A matrix of the kernels' pattern: the bulk stiffness plus `contact`.
     fn with_bulk(&self, contact: Triplets) -> Result<SparseColMat<usize, f64>> {
-        self.pattern.matrix(&[&self.bulk, &contact.vals])
+        let mut a = self.k.clone();
+        let (sym, val) = a.parts_mut();
+        let (ptr, idx) = (sym.col_ptr(), sym.row_idx());
+        for ((&i, &j), &v) in contact.rows.iter().zip(&contact.cols).zip(&contact.vals) {
+            let col = &idx[ptr[j]..ptr[j + 1]];
+            let at = col.binary_search(&i).map_err(|_| {
+                Error::Singular(format!("entry ({i}, {j}) outside the kernels' pattern"))
+            })?;
+            val[ptr[j] + at] += v;
+        }
+        Ok(a)
     }
 
     /// The kernel matrix: bulk stiffness plus the contact matrix of `kind`.
