@@ -92,11 +92,25 @@ pub fn btdb(ga: [f64; 2], gb: [f64; 2], d: &[[f64; 3]; 3]) -> [[f64; 2]; 2] {
 
 /// Element stiffness ∫ Bᵀ D B dΩ in local order (control point major).
 pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
+    Ok(element_integrals(body, e, None)?.0)
+}
+
+/// The element stiffness and, for a body force b, the element load
+/// ∫ R b dΩ, from one pass over the quadrature points.
+fn element_integrals(
+    body: &Body,
+    e: usize,
+    force: Option<[f64; 2]>,
+) -> Result<(DMatrix<f64>, DVector<f64>)> {
     let el = &body.space.elements[e];
     let n = el.cps.len();
     let d = body.material.d_matrix();
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
+    let mut fe = DVector::zeros(if force.is_some() { 2 * n } else { 0 });
     for qp in body.space.quadrature(el)? {
+        if let Some(b) = force {
+            add_shape_times(&mut fe, &qp.shape, b, qp.weight);
+        }
         // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
             let ga = qp.shape.grad[a];
@@ -119,7 +133,7 @@ pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
             }
         }
     }
-    Ok(ke)
+    Ok((ke, fe))
 }
 
 /// The stiffness of all bodies as triplets over the free DOFs, and the lift
@@ -230,8 +244,21 @@ fn chunks(bodies: &[Body], map: &DofMap, before: &[usize]) -> Vec<Chunk> {
     out
 }
 
+/// The bulk operator of all bodies over the free DOFs: see
+/// [`stiffness_matrix`].
+pub struct Bulk {
+    /// The stiffness, compressed by columns.
+    pub k: SparseColMat<usize, f64>,
+    /// K_fc ū, the columns of the prescribed DOFs times their values.
+    pub lift: Vec<f64>,
+    /// The load of the body forces.
+    pub body_load: Vec<f64>,
+}
+
 /// The stiffness of all bodies, assembled straight into compressed
-/// columns over the free DOFs, and the lift K_fc ū.
+/// columns over the free DOFs, the lift K_fc ū, and the load of the
+/// constant body forces `forces` (one per body; the integrals share the
+/// stiffness's quadrature).
 ///
 /// The pattern comes from control-point connectivity: in a tensor-product
 /// patch, control points (i, k) and (i', k') share an element exactly when
@@ -247,7 +274,8 @@ pub fn stiffness_matrix(
     bodies: &[Body],
     map: &DofMap,
     couplings: &[(usize, usize)],
-) -> Result<(SparseColMat<usize, f64>, Vec<f64>)> {
+    forces: &[[f64; 2]],
+) -> Result<Bulk> {
     let n = map.n_free();
     let before = free_before(map);
     // extra couplings by column, sorted, without duplicates
@@ -351,14 +379,20 @@ pub fn stiffness_matrix(
     // values, in place
     let mut val = vec![0.0; nnz];
     let mut lift = vec![0.0; n];
+    let mut body_load = vec![0.0; n];
     let lifts = split_at_all(&mut lift, &chunk_bounds(&chunks, n));
+    let body_loads = split_at_all(&mut body_load, &chunk_bounds(&chunks, n));
     let vals = split_at_all(&mut val, &bounds);
     let (col_ptr_ref, row_idx_ref) = (&col_ptr, &row_idx);
     chunks
         .par_iter()
-        .zip(vals.into_par_iter().zip(lifts.into_par_iter()))
-        .map(|(ch, (vals, lift))| -> Result<()> {
+        .zip(
+            vals.into_par_iter()
+                .zip(lifts.into_par_iter().zip(body_loads)),
+        )
+        .map(|(ch, (vals, (lift, body_load)))| -> Result<()> {
             let body = &bodies[ch.body];
+            let force = forces.get(ch.body).copied().filter(|f| *f != [0.0, 0.0]);
             let q = body.space.patch.degree()[1];
             let base = col_ptr_ref[ch.cols[0]];
             for (e, el) in body.space.elements.iter().enumerate() {
@@ -366,7 +400,7 @@ pub fn stiffness_matrix(
                 if sy < ch.rows[0] || sy - q >= ch.rows[1] {
                     continue;
                 }
-                let ke = element_stiffness(body, e)?;
+                let (ke, fe) = element_integrals(body, e, force)?;
                 let dofs = map.element_dofs(ch.body, &el.cps);
                 let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
                 for (bl, fb) in free.iter().enumerate() {
@@ -388,6 +422,9 @@ pub fn stiffness_matrix(
                     let Some(i) = fa.filter(|&i| i >= ch.cols[0] && i < ch.cols[1]) else {
                         continue;
                     };
+                    if force.is_some() {
+                        body_load[i - ch.cols[0]] += fe[a];
+                    }
                     for (bl, fb) in free.iter().enumerate() {
                         if fb.is_none() {
                             lift[i - ch.cols[0]] += ke[(a, bl)] * map.prescribed(dofs[bl]);
@@ -399,7 +436,11 @@ pub fn stiffness_matrix(
         })
         .collect::<Result<Vec<()>>>()?;
     let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-    Ok((SparseColMat::new(symbolic, val), lift))
+    Ok(Bulk {
+        k: SparseColMat::new(symbolic, val),
+        lift,
+        body_load,
+    })
 }
 
 /// The free-column boundaries of the chunks: 0, …, n.
@@ -481,24 +522,54 @@ impl<B> Load<B> {
     }
 }
 
+/// The body a load acts on, checked.
+fn load_body<'a>(bodies: &'a [Body], load: &Load) -> Result<&'a Body> {
+    let bi = *load.body();
+    bodies.get(bi).ok_or_else(|| {
+        Error::invalid(
+            "load.body",
+            bi,
+            format!("there are {} bodies", bodies.len()),
+        )
+    })
+}
+
+fn check_force(force: [f64; 2]) -> Result<()> {
+    for (i, c) in force.iter().enumerate() {
+        crate::error::finite(&format!("load.body_force[{i}]"), *c)?;
+    }
+    Ok(())
+}
+
+/// The body forces of `loads` summed per body (for [`stiffness_matrix`]),
+/// and the other loads.
+pub fn split_body_forces(bodies: &[Body], loads: &[Load]) -> Result<(Vec<[f64; 2]>, Vec<Load>)> {
+    let mut forces = vec![[0.0; 2]; bodies.len()];
+    let mut rest = Vec::new();
+    for load in loads {
+        load_body(bodies, load)?;
+        match *load {
+            Load::BodyForce { body, force } => {
+                check_force(force)?;
+                forces[body][0] += force[0];
+                forces[body][1] += force[1];
+            }
+            _ => rest.push(load.clone()),
+        }
+    }
+    Ok((forces, rest))
+}
+
 /// The load vector L(v) over the free DOFs.
 pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<f64>> {
     let mut f = vec![0.0; map.n_free()];
     for load in loads {
         let bi = *load.body();
-        let body = bodies.get(bi).ok_or_else(|| {
-            Error::invalid(
-                "load.body",
-                bi,
-                format!("there are {} bodies", bodies.len()),
-            )
-        })?;
+        let body = load_body(bodies, load)?;
         let space = &body.space;
         match *load {
             Load::BodyForce { force, .. } => {
-                for (i, c) in force.iter().enumerate() {
-                    crate::error::finite(&format!("load.body_force[{i}]"), *c)?;
-                }
+                check_force(force)?;
                 // elements in parallel, scattered in order: deterministic
                 let fes: Vec<Result<DVector<f64>>> = space
                     .elements

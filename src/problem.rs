@@ -2,7 +2,7 @@
 //! and the residual (13) and kernels (17)–(18) the solvers need, all over
 //! the free DOFs.
 
-use crate::assembly::{load_vector, stiffness_matrix, Load, Triplets};
+use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load, Triplets};
 use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
@@ -87,10 +87,12 @@ impl Problem {
                 couplings.extend(free.iter().map(|&j| (i, j)));
             }
         }
-        let (k, lift) = stiffness_matrix(&bodies, &map, &couplings)?;
-        let mut rhs = load_vector(&bodies, &map, loads)?;
-        for (r, l) in rhs.iter_mut().zip(&lift) {
-            *r -= l;
+        // body forces share the stiffness's quadrature
+        let (forces, others) = split_body_forces(&bodies, loads)?;
+        let Bulk { k, lift, body_load } = stiffness_matrix(&bodies, &map, &couplings, &forces)?;
+        let mut rhs = load_vector(&bodies, &map, &others)?;
+        for ((r, l), b) in rhs.iter_mut().zip(&lift).zip(&body_load) {
+            *r += b - l;
         }
         Ok(Self {
             bodies,

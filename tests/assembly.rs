@@ -2,7 +2,7 @@
 //! control-point connectivity, values in place, in parallel) against the
 //! element triplets summed by a general sparsity pattern.
 
-use iga_contact::assembly::{stiffness, stiffness_matrix};
+use iga_contact::assembly::{load_vector, stiffness, stiffness_matrix, Load};
 use iga_contact::benchmarks::{Hertz, Taylor};
 use iga_contact::linsolve::Pattern;
 use iga_contact::problem::Problem;
@@ -14,7 +14,22 @@ fn check(name: &str, p: &Problem) {
         .matrix(&[&trip.vals])
         .unwrap()
         .to_dense();
-    let (k, lift2) = stiffness_matrix(&p.bodies, &p.map, &[]).unwrap();
+    let force = [0.3, -1.3e6];
+    let forces = vec![force; p.bodies.len()];
+    let bulk = stiffness_matrix(&p.bodies, &p.map, &[], &forces).unwrap();
+    // the body force integrated with the stiffness equals the load vector's
+    let loads: Vec<Load> = (0..p.bodies.len())
+        .map(|body| Load::BodyForce { body, force })
+        .collect();
+    let want_load = load_vector(&p.bodies, &p.map, &loads).unwrap();
+    let d = want_load
+        .iter()
+        .zip(&bulk.body_load)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let size = want_load.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(d <= 1e-13 * size, "{name}: body load {d:.2e}");
+    let (k, lift2) = (bulk.k, bulk.lift);
     let got = k.to_dense();
     let scale = want.norm_max();
     assert!(
