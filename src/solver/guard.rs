@@ -62,6 +62,11 @@ impl Guard {
         guard
     }
 
+    /// The number of contact points.
+    pub fn points(&self) -> usize {
+        self.weights.len()
+    }
+
     fn modes(&self) -> usize {
         self.jumps.first().map_or(0, |j| j.len())
     }

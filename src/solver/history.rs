@@ -42,13 +42,16 @@ impl fmt::Display for Event {
 pub struct Iteration {
     /// 1-based iteration number.
     pub iteration: usize,
-    /// ‖R(u_k)‖₂ after the update.
+    /// ‖R(u_k)‖₂ after the update (on the contact layer, the residual of
+    /// the condensed problem, which is the whole residual: the interior
+    /// is relaxed).
     pub residual: f64,
     /// ‖R(u_k)‖ / ‖R(u_0)‖.
     pub relative_residual: f64,
-    /// ‖Δu‖₂ of the update.
+    /// ‖Δu‖₂ of the update (on the contact layer: of its DOFs).
     pub update: f64,
-    /// The displacement component of largest magnitude (signed).
+    /// The displacement component of largest magnitude (signed; on the
+    /// contact layer: of its DOFs, the body being recovered only at the end).
     pub max_displacement: f64,
     /// Number of contact quadrature points with P ≤ 0.
     pub active_points: usize,

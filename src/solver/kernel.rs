@@ -138,8 +138,7 @@ impl<'s, 'p> Kernels<'s, 'p> {
 
     /// The tied kernel (17): every point active.
     pub fn tied(&mut self, events: &mut Vec<Event>) -> Result<Built<'p>> {
-        let m = self.sys.p_values(&vec![0.0; self.sys.dim()]).len();
-        self.build(vec![1.0; m], Vec::new(), events)
+        self.build(vec![1.0; self.guard.points()], Vec::new(), events)
     }
 
     /// The secant kernel (18) at `u`. If its active set does not hold a
