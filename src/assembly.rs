@@ -222,7 +222,10 @@ fn chunks(bodies: &[Body], map: &DofMap, before: &[usize]) -> Vec<Chunk> {
     for (b, body) in bodies.iter().enumerate() {
         let [n0, n1] = body.space.patch.n();
         let q = body.space.patch.degree()[1];
-        let height = n1.div_ceil(8 * threads).max(q + 1);
+        // a few bands per thread balance the load; an element is integrated
+        // by every band it touches, so bands much taller than the q + 1
+        // rows of an element keep that repetition small
+        let height = n1.div_ceil(4 * threads).max(4 * (q + 1));
         let mut k0 = 0;
         while k0 < n1 {
             let k1 = (k0 + height).min(n1);

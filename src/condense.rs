@@ -36,7 +36,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Accum, Mat, MatMut, Par};
 
 /// A₀ factorised with the layer L last, and its Schur complement on L.
@@ -102,7 +102,7 @@ impl Condensation {
     /// stored) with the DOFs `layer` (increasing, distinct) ordered last.
     /// Fails with [`Error::Singular`] if `a0` is not positive definite —
     /// the bodies are not held even with contact everywhere.
-    pub fn new(a0: &SparseColMat<usize, f64>, layer: Vec<usize>) -> Result<Self> {
+    pub fn new(a0: SparseColMatRef<'_, usize, f64>, layer: Vec<usize>) -> Result<Self> {
         let n = a0.nrows();
         let ell = layer.len();
         let mut in_layer = vec![false; n];
@@ -142,7 +142,7 @@ impl Condensation {
         symbolic
             .factorize_numeric_llt(
                 &mut values,
-                a0.as_ref(),
+                a0,
                 faer::Side::Lower,
                 Default::default(),
                 par,
@@ -402,7 +402,7 @@ impl Condensation {
 mod tests {
     use super::*;
     use faer::linalg::solvers::Solve;
-    use faer::sparse::Triplet;
+    use faer::sparse::{SparseColMat, Triplet};
 
     /// A 2D 5-point Laplacian on an m × m grid plus a diagonal shift: SPD.
     fn laplacian(m: usize) -> SparseColMat<usize, f64> {
@@ -432,7 +432,7 @@ mod tests {
         // the bottom two grid rows and a scattered column: like a contact layer
         let mut layer: Vec<usize> = (0..2 * m).chain([5 * m + 7, 9 * m + 3]).collect();
         layer.sort_unstable();
-        let c = Condensation::new(&a, layer.clone()).unwrap();
+        let c = Condensation::new(a.as_ref(), layer.clone()).unwrap();
         let ell = layer.len();
         let dense = a.to_dense();
         let interior: Vec<usize> = (0..n).filter(|i| !layer.contains(i)).collect();
@@ -474,7 +474,7 @@ mod tests {
                 vals[k] = -1.0;
             }
         }
-        let err = Condensation::new(&a, vec![0, 1, last])
+        let err = Condensation::new(a.as_ref(), vec![0, 1, last])
             .err()
             .expect("indefinite");
         assert_eq!(err.kind(), "singular_kernel", "{err}");

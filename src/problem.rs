@@ -2,7 +2,7 @@
 //! and the residual (13) and kernels (17)–(18) the solvers need, all over
 //! the free DOFs.
 
-use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load, Triplets};
+use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load};
 use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
@@ -108,19 +108,6 @@ impl Problem {
         self.map.n_free()
     }
 
-    fn contact_triplets(
-        map: &DofMap,
-        points: &[ContactPoint],
-        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
-    ) -> Triplets {
-        let mut t = Triplets::default();
-        let mut scratch = vec![0.0; map.n_free()];
-        for (q, cp) in points.iter().enumerate() {
-            t.add_block(map, &cp.dofs, &cp.dofs, &local(q, cp), &mut scratch);
-        }
-        t
-    }
-
     /// H per contact point: 1 everywhere for the tied kernel (17), H(P(u))
     /// for the secant kernel (18)–(19).
     fn activity(&self, kind: Kernel) -> Vec<f64> {
@@ -161,25 +148,66 @@ impl Problem {
     /// holds the bodies. Every kernel (17)–(18), of every θ and active
     /// set, is A₀ plus a matrix on the [`Problem::layer`].
     pub fn bulk_plus_penalty(&self) -> Result<SparseColMat<usize, f64>> {
-        self.with_bulk(Self::contact_triplets(&self.map, &self.points, |_, cp| {
-            let w = cp.weight * cp.gamma;
-            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| w * cp.jn[a] * cp.jn[b])
-        }))
+        self.matrix_of(self.bulk_plus_penalty_values()?)
     }
 
-    /// A matrix of the kernels' pattern: the bulk stiffness plus `contact`.
-    fn with_bulk(&self, contact: Triplets) -> Result<SparseColMat<usize, f64>> {
-        let mut a = self.k.clone();
-        let (sym, val) = a.parts_mut();
-        let (ptr, idx) = (sym.col_ptr(), sym.row_idx());
-        for ((&i, &j), &v) in contact.rows.iter().zip(&contact.cols).zip(&contact.vals) {
-            let col = &idx[ptr[j]..ptr[j + 1]];
-            let at = col.binary_search(&i).map_err(|_| {
-                Error::Singular(format!("entry ({i}, {j}) outside the kernels' pattern"))
-            })?;
-            val[ptr[j] + at] += v;
+    /// The values of [`Problem::bulk_plus_penalty`], in the pattern of
+    /// [`Problem::k`].
+    pub fn bulk_plus_penalty_values(&self) -> Result<Vec<f64>> {
+        self.values_with(|_, cp| {
+            let w = cp.weight * cp.gamma;
+            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| w * cp.jn[a] * cp.jn[b])
+        })
+    }
+
+    /// The values of the bulk stiffness plus every point's `local` matrix
+    /// (rows and columns of prescribed DOFs dropped), in the pattern of
+    /// [`Problem::k`].
+    fn values_with(
+        &self,
+        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
+    ) -> Result<Vec<f64>> {
+        let mut val = self.k.val().to_vec();
+        let s = self.k.symbolic();
+        let (ptr, idx) = (s.col_ptr(), s.row_idx());
+        for (q, cp) in self.points.iter().enumerate() {
+            let m = local(q, cp);
+            let free: Vec<(usize, usize)> = cp
+                .dofs
+                .iter()
+                .enumerate()
+                .filter_map(|(a, &d)| self.map.free(d).map(|i| (a, i)))
+                .collect();
+            for &(b, j) in &free {
+                let col = &idx[ptr[j]..ptr[j + 1]];
+                for &(a, i) in &free {
+                    let at = col.binary_search(&i).map_err(|_| {
+                        Error::Singular(format!("entry ({i}, {j}) outside the kernels' pattern"))
+                    })?;
+                    val[ptr[j] + at] += m[(a, b)];
+                }
+            }
         }
-        Ok(a)
+        Ok(val)
+    }
+
+    /// A matrix of the kernels' pattern: the bulk stiffness plus every
+    /// point's `local` matrix.
+    fn with_bulk(
+        &self,
+        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
+    ) -> Result<SparseColMat<usize, f64>> {
+        self.matrix_of(self.values_with(local)?)
+    }
+
+    /// The matrix of the pattern of [`Problem::k`] with the values `val`.
+    fn matrix_of(&self, val: Vec<f64>) -> Result<SparseColMat<usize, f64>> {
+        let symbolic = self
+            .k
+            .symbolic()
+            .to_owned()
+            .map_err(|e| Error::Singular(format!("out of memory for a kernel: {e:?}")))?;
+        Ok(SparseColMat::new(symbolic, val))
     }
 
     /// The kernel matrix: bulk stiffness plus the contact matrix of `kind`.
@@ -187,9 +215,7 @@ impl Problem {
     /// serves them all.
     pub fn kernel(&self, kind: Kernel) -> Result<SparseColMat<usize, f64>> {
         let h = self.activity(kind);
-        self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
-            local_matrix(cp, h[q])
-        }))
+        self.with_bulk(|q, cp| local_matrix(cp, h[q]))
     }
 
     /// The kernel of `kind` split as S + U Vᵀ for
@@ -208,13 +234,13 @@ impl Problem {
             return Ok(None);
         }
         let h = self.activity(kind);
-        let spd = self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
+        let spd = self.with_bulk(|q, cp| {
             let (w, g, th) = (cp.weight, cp.gamma, cp.theta);
             DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| {
                 h[q] * w * g * cp.jn[a] * cp.jn[b]
                     - (1.0 - h[q]) * (th / g) * w * cp.sn[a] * cp.sn[b]
             })
-        }))?;
+        })?;
         let n = self.n();
         let mut row_of = vec![usize::MAX; n];
         let mut rows = Vec::new();

@@ -61,7 +61,12 @@ impl<'a> TraceProblem<'a> {
                 layer.len()
             )));
         }
-        let cond = Condensation::new(&problem.bulk_plus_penalty()?, layer)?;
+        let a0 = problem.bulk_plus_penalty_values()?;
+        let cond = Condensation::new(
+            faer::sparse::SparseColMatRef::new(problem.k.symbolic(), &a0),
+            layer,
+        )?;
+        drop(a0);
         let mut at_layer = vec![usize::MAX; problem.n()];
         for (k, &i) in cond.layer().iter().enumerate() {
             at_layer[i] = k;
