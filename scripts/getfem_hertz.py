@@ -7,7 +7,7 @@ body force (0, -1.3e6), u_x = 0 on the symmetry line x = 0, and the rigid
 floor y = 0 below, with frictionless contact by GetFEM's Nitsche brick
 (`add_Nitsche_contact_with_rigid_obstacle_brick`) on the 45-degree arc
 from the lowest point (the crate's contact side), solved by GetFEM's
-Newton with its default linear solver.
+Newton with MUMPS.
 
 The mesh is an isoparametric Q1 or Q2 mesh of N x N elements: a Coons
 (transfinite) map of the unit square onto the half disk whose four sides
@@ -146,7 +146,9 @@ def solve(gf, np, degree, n, theta, gamma0_factor):
     neumann = md.Neumann_term('u', CONTACT)
     md.add_Nitsche_contact_with_rigid_obstacle_brick(
         mim, 'u', neumann, 'obstacle', 'gamma0', CONTACT, theta)
-    iterations, converged = md.solve('max_res', 1e-8, 'max_iter', 50)
+    # MUMPS explicitly: for large systems 'auto' picks GMRES with ILUT,
+    # which fails here (tiny pivots) and runs for tens of minutes
+    iterations, converged = md.solve('max_res', 1e-8, 'max_iter', 50, 'lsolver', 'mumps')
     seconds = time.perf_counter() - t0
     pts = np.array(face_points(degree, n)).T
     syy = md.interpolation('(lambda*Trace(Grad_u)*Id(2) + 2*mu*Sym(Grad_u))(2,2)', pts, m)

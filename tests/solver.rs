@@ -86,6 +86,34 @@ fn a_block_above_the_floor_closes_gaps_up_to_its_height() {
     }
 }
 
+/// A curved body too: the Hertz disk lifted by 0.2 and 1.0 times its
+/// diameter lands on the floor with the unlifted iteration count.
+#[test]
+fn a_lifted_disk_lands_on_the_floor() {
+    let load = iga_contact::studies::hertz::applied_force(&Hertz::default().build().unwrap());
+    let on_floor = solve(
+        &Hertz::default().build().unwrap(),
+        &SolverOptions::default(),
+    )
+    .unwrap()
+    .history
+    .len();
+    for lift in [0.08, 0.4] {
+        let p = Hertz::default()
+            .build_lifted(Hertz::material(), 1.0, lift)
+            .unwrap();
+        for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+            let s = solve(&p, &SolverOptions::with_kind(kind)).unwrap();
+            assert!(s.history.len() <= on_floor + 1, "lift {lift}, {kind:?}");
+            let f = p.contact_force(&s.full)[1];
+            assert!(
+                (f - load).abs() <= 1e-8 * load,
+                "lift {lift}, {kind:?}: {f}"
+            );
+        }
+    }
+}
+
 /// The paper's iteration cannot: its tied start glues the block at its
 /// gap, the block then hovers (no active point, ‖R‖ = ‖R₀‖) while BFGS
 /// moves it in small rigid steps, and the first correction is allowed only
