@@ -170,41 +170,46 @@ fn tables(rows: &[Row]) -> (String, String) {
     );
     for r in rows {
         let ratio = r.total / r.cholesky;
-        csv.push_str(&format!(
-            "{},{},{},{},{:.4},{:.4},{:.4},{},{:.4},{:.4},{:.4},{:.3},{:.3},{:.2e},{:.2}\n",
-            r.p,
-            r.n,
-            r.dofs,
-            r.layer,
-            r.assembly,
-            r.cholesky,
-            r.condensation,
-            r.iterations,
-            r.iterations_s,
-            r.recovery,
-            r.total,
-            ratio,
-            r.peak,
-            r.force_error,
-            r.route_b
-        ));
-        md.push_str(&format!(
-            "| {} | {}² | {} | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.3} | {:.2} | {:.2} | {:.2} | {:.1} |\n",
-            r.p,
-            r.n,
-            r.dofs,
-            r.layer,
-            r.assembly,
-            r.cholesky,
-            r.condensation,
-            r.iterations,
-            r.iterations_s,
-            r.recovery,
-            r.total,
-            ratio,
-            r.peak,
-            r.route_b
-        ));
+        // (CSV cell, table cell): the table leaves the force error out
+        let cells = [
+            (r.p.to_string(), Some(r.p.to_string())),
+            (r.n.to_string(), Some(format!("{}²", r.n))),
+            (r.dofs.to_string(), Some(r.dofs.to_string())),
+            (r.layer.to_string(), Some(r.layer.to_string())),
+            (
+                format!("{:.4}", r.assembly),
+                Some(format!("{:.2}", r.assembly)),
+            ),
+            (
+                format!("{:.4}", r.cholesky),
+                Some(format!("{:.2}", r.cholesky)),
+            ),
+            (
+                format!("{:.4}", r.condensation),
+                Some(format!("{:.2}", r.condensation)),
+            ),
+            (r.iterations.to_string(), Some(r.iterations.to_string())),
+            (
+                format!("{:.4}", r.iterations_s),
+                Some(format!("{:.2}", r.iterations_s)),
+            ),
+            (
+                format!("{:.4}", r.recovery),
+                Some(format!("{:.3}", r.recovery)),
+            ),
+            (format!("{:.4}", r.total), Some(format!("{:.2}", r.total))),
+            (format!("{ratio:.3}"), Some(format!("{ratio:.2}"))),
+            (format!("{:.3}", r.peak), Some(format!("{:.2}", r.peak))),
+            (format!("{:.2e}", r.force_error), None),
+            (
+                format!("{:.2}", r.route_b),
+                Some(format!("{:.1}", r.route_b)),
+            ),
+        ];
+        let csv_cells: Vec<&str> = cells.iter().map(|c| c.0.as_str()).collect();
+        let md_cells: Vec<&str> = cells.iter().filter_map(|c| c.1.as_deref()).collect();
+        csv.push_str(&format!("{}\n", csv_cells.join(",")));
+        md.push_str(&format!("| {} |\n", md_cells.join(" | ")));
     }
     (csv, md)
 }

@@ -311,7 +311,7 @@ impl Problem {
 
     /// As [`Problem::residual`], with the points marked in `forced` (empty:
     /// none) treated as active whatever the sign of P: their contact force
-    /// is that of the tied law, [P]₋ replaced by P. This is the residual
+    /// is that of the tied law, \[P\]₋ replaced by P. This is the residual
     /// whose linearisation is the secant kernel with those points active,
     /// so a step with it closes their gap (the floating guard).
     pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState) {

@@ -26,9 +26,9 @@ pub fn heaviside(x: f64) -> f64 {
 /// Which force law a contact point follows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Law {
-    /// Frictionless contact, Eq. (13): the force of [P]₋.
+    /// Frictionless contact, Eq. (13): the force of \[P\]₋.
     Contact,
-    /// Bonded in the normal direction: [P]₋ replaced by P, the law whose
+    /// Bonded in the normal direction: \[P\]₋ replaced by P, the law whose
     /// tangent is the tied matrix (17). The floating guard uses it to pull
     /// the nearest points of a floating body onto the obstacle.
     Tied,

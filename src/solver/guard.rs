@@ -121,9 +121,9 @@ impl Guard {
 impl Guard {
     /// The rigid shifts t (one per floating mode) that balance the load
     /// along every floating mode, given P at every point and f0 = rᵀR(u)
-    /// per mode: F(t) = f0 + Σ_q w v_q ([P_q − γ v_q·t]₋ − [P_q]₋) = 0,
+    /// per mode: F(t) = f0 + Σ_q w v_q (\[P_q − γ v_q·t\]₋ − \[P_q\]₋) = 0,
     /// v_q = ⟦r_n⟧ at q. F = −∇Φ for the convex
-    /// Φ(t) = −c·t + Σ_q (w/2γ) [P_q − γ v_q·t]₋², minimised by Newton
+    /// Φ(t) = −c·t + Σ_q (w/2γ) \[P_q − γ v_q·t\]₋², minimised by Newton
     /// with backtracking.
     pub fn balance(&self, p: &[f64], f0: &[f64]) -> Vec<f64> {
         let m = self.modes();
