@@ -254,3 +254,22 @@ fn the_tied_kernel_is_weak_on_the_far_arc_for_the_empirical_penalty() {
     // the default start never ties the far arc
     assert_eq!(SolverOptions::default().start, Start::Secant);
 }
+
+#[test]
+fn the_layer_space_needs_the_factorise_once_kernels() {
+    let p = block(0.1, [4, 2], PRESSURE);
+    let opts = SolverOptions {
+        space: IterationSpace::Trace,
+        factorisation: iga_contact::solver::Factorisation::Lu,
+        ..SolverOptions::default()
+    };
+    let err = solve(&p, &opts).expect_err("invalid combination");
+    assert_eq!(err.kind(), "invalid_input");
+    assert!(err.to_string().contains("solver.space"), "{err}");
+    // with the body space the same kernels work
+    let body = SolverOptions {
+        space: IterationSpace::Body,
+        ..opts
+    };
+    assert!(solve(&p, &body).is_ok());
+}
