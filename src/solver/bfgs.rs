@@ -89,8 +89,8 @@ impl InverseUpdate {
 /// every change of the active set from the first iteration on — the
 /// kernel is the exact tangent of the current linear piece whenever the
 /// active set moves, and the BFGS pairs carry the iteration only while it
-/// stays: on Hertz the iteration count is that of semismooth Newton, with
-/// one factorisation fewer.
+/// stays: on Hertz the iteration and factorisation counts are those of
+/// semismooth Newton.
 ///
 /// Returns the iterate (in the space of `sys`), the history and the
 /// number of kernel factorisations.
