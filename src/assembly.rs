@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::nurbs::Side;
 use crate::quadrature;
 use crate::space::Shape;
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -91,11 +92,25 @@ pub fn btdb(ga: [f64; 2], gb: [f64; 2], d: &[[f64; 3]; 3]) -> [[f64; 2]; 2] {
 
 /// Element stiffness ∫ Bᵀ D B dΩ in local order (control point major).
 pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
+    Ok(element_integrals(body, e, None)?.0)
+}
+
+/// The element stiffness and, for a body force b, the element load
+/// ∫ R b dΩ, from one pass over the quadrature points.
+fn element_integrals(
+    body: &Body,
+    e: usize,
+    force: Option<[f64; 2]>,
+) -> Result<(DMatrix<f64>, DVector<f64>)> {
     let el = &body.space.elements[e];
     let n = el.cps.len();
     let d = body.material.d_matrix();
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
+    let mut fe = DVector::zeros(if force.is_some() { 2 * n } else { 0 });
     for qp in body.space.quadrature(el)? {
+        if let Some(b) = force {
+            add_shape_times(&mut fe, &qp.shape, b, qp.weight);
+        }
         // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
             let ga = qp.shape.grad[a];
@@ -118,7 +133,7 @@ pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
             }
         }
     }
-    Ok(ke)
+    Ok((ke, fe))
 }
 
 /// The stiffness of all bodies as triplets over the free DOFs, and the lift
@@ -150,6 +165,292 @@ pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> 
         }
     }
     Ok((trip, lift))
+}
+
+// ---------------------------------------------------------------- CSC
+
+/// For every basis function of a knot vector, the first and last basis
+/// function it shares a span with.
+fn coupled_range(knots: &crate::nurbs::KnotVector) -> Vec<(usize, usize)> {
+    let p = knots.degree();
+    let mut range = vec![(usize::MAX, 0usize); knots.n_basis()];
+    for (s, _, _) in knots.spans() {
+        for r in &mut range[s - p..=s] {
+            r.0 = r.0.min(s - p);
+            r.1 = r.1.max(s);
+        }
+    }
+    range
+}
+
+/// The number of free DOFs with a global index below g, for every g.
+fn free_before(map: &DofMap) -> Vec<usize> {
+    let mut out = Vec::with_capacity(map.n_total() + 1);
+    let mut k = 0;
+    for g in 0..map.n_total() {
+        out.push(k);
+        if map.free(g).is_some() {
+            k += 1;
+        }
+    }
+    out.push(k);
+    out
+}
+
+/// Splits `v` at the increasing positions `at` (first 0, last `v.len()`).
+fn split_at_all<'a, T>(mut v: &'a mut [T], at: &[usize]) -> Vec<&'a mut [T]> {
+    let mut out = Vec::with_capacity(at.len().saturating_sub(1));
+    for w in at.windows(2) {
+        let (head, tail) = v.split_at_mut(w[1] - w[0]);
+        out.push(head);
+        v = tail;
+    }
+    out
+}
+
+/// Column chunks per body for the parallel passes: rows of control points
+/// (η index) [k0, k1), with the free columns they own.
+struct Chunk {
+    body: usize,
+    rows: [usize; 2],
+    cols: [usize; 2],
+}
+
+fn chunks(bodies: &[Body], map: &DofMap, before: &[usize]) -> Vec<Chunk> {
+    let threads = rayon::current_num_threads().max(1);
+    let mut out = Vec::new();
+    for (b, body) in bodies.iter().enumerate() {
+        let [n0, n1] = body.space.patch.n();
+        let q = body.space.patch.degree()[1];
+        // a few bands per thread balance the load; an element is integrated
+        // by every band it touches, so bands much taller than the q + 1
+        // rows of an element keep that repetition small
+        let height = n1.div_ceil(4 * threads).max(4 * (q + 1));
+        let mut k0 = 0;
+        while k0 < n1 {
+            let k1 = (k0 + height).min(n1);
+            let col = |k: usize| {
+                if k == n1 {
+                    before[map.global(b, 0, 0) + 2 * n0 * n1]
+                } else {
+                    before[map.global(b, k * n0, 0)]
+                }
+            };
+            out.push(Chunk {
+                body: b,
+                rows: [k0, k1],
+                cols: [col(k0), col(k1)],
+            });
+            k0 = k1;
+        }
+    }
+    out
+}
+
+/// The bulk operator of all bodies over the free DOFs: see
+/// [`stiffness_matrix`].
+pub struct Bulk {
+    /// The stiffness, compressed by columns.
+    pub k: SparseColMat<usize, f64>,
+    /// K_fc ū, the columns of the prescribed DOFs times their values.
+    pub lift: Vec<f64>,
+    /// The load of the body forces.
+    pub body_load: Vec<f64>,
+}
+
+/// The stiffness of all bodies, assembled straight into compressed
+/// columns over the free DOFs, the lift K_fc ū, and the load of the
+/// constant body forces `forces` (one per body; the integrals share the
+/// stiffness's quadrature).
+///
+/// The pattern comes from control-point connectivity: in a tensor-product
+/// patch, control points (i, k) and (i', k') share an element exactly when
+/// i, i' share a span of ξ and k, k' one of η, so a column's rows are a
+/// product of two index ranges, known before any element is integrated.
+/// `couplings` adds (row, column) pairs of free DOFs that no element
+/// joins (contact between bodies), with zero values. Elements are then
+/// integrated in parallel and their values added in place: the columns are
+/// split into bands of control-point rows, each owned by one task, which
+/// integrates every element touching its band (elements on a band's edge
+/// are integrated by both neighbours) and writes only its own columns.
+pub fn stiffness_matrix(
+    bodies: &[Body],
+    map: &DofMap,
+    couplings: &[(usize, usize)],
+    forces: &[[f64; 2]],
+) -> Result<Bulk> {
+    let n = map.n_free();
+    let before = free_before(map);
+    // extra couplings by column, sorted, without duplicates
+    let mut extra: Vec<(usize, usize)> = couplings.iter().map(|&(i, j)| (j, i)).collect();
+    extra.sort_unstable();
+    extra.dedup();
+    let mut extra_ptr = vec![0usize; n + 1];
+    for &(j, _) in &extra {
+        extra_ptr[j + 1] += 1;
+    }
+    for j in 0..n {
+        extra_ptr[j + 1] += extra_ptr[j];
+    }
+    // the global DOF of every free column
+    let mut global_of = vec![0usize; n];
+    for g in 0..map.n_total() {
+        if let Some(i) = map.free(g) {
+            global_of[i] = g;
+        }
+    }
+    let ranges: Vec<[Vec<(usize, usize)>; 2]> = bodies
+        .iter()
+        .map(|b| {
+            [
+                coupled_range(&b.space.patch.knots[0]),
+                coupled_range(&b.space.patch.knots[1]),
+            ]
+        })
+        .collect();
+    let chunks = chunks(bodies, map, &before);
+    // rows of column j: the free DOFs of the coupled control points,
+    // merged with the extra couplings (both sorted)
+    let column = |b: usize, j: usize, emit: &mut dyn FnMut(usize)| {
+        let g = global_of[j];
+        let n0 = bodies[b].space.patch.n()[0];
+        let cp = (g - map.global(b, 0, 0)) / 2;
+        let (ri, rk) = (ranges[b][0][cp % n0], ranges[b][1][cp / n0]);
+        let mut ex = extra[extra_ptr[j]..extra_ptr[j + 1]]
+            .iter()
+            .map(|e| e.1)
+            .peekable();
+        let mut push = |i: usize, emit: &mut dyn FnMut(usize)| {
+            while let Some(&e) = ex.peek() {
+                if e < i {
+                    emit(e);
+                    ex.next();
+                } else {
+                    if e == i {
+                        ex.next();
+                    }
+                    break;
+                }
+            }
+            emit(i);
+        };
+        for k in rk.0..=rk.1 {
+            for i in ri.0..=ri.1 {
+                for c in 0..2 {
+                    if let Some(f) = map.free(map.global(b, i + k * n0, c)) {
+                        push(f, &mut *emit);
+                    }
+                }
+            }
+        }
+        for e in ex {
+            emit(e);
+        }
+    };
+    let mut counts = vec![0usize; n];
+    chunks
+        .par_iter()
+        .zip(split_at_all(&mut counts, &chunk_bounds(&chunks, n)).into_par_iter())
+        .for_each(|(ch, cnt)| {
+            for (j, c) in (ch.cols[0]..ch.cols[1]).zip(cnt.iter_mut()) {
+                column(ch.body, j, &mut |_| *c += 1);
+            }
+        });
+    let mut col_ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        col_ptr[j + 1] = col_ptr[j] + counts[j];
+    }
+    drop(counts);
+    let nnz = col_ptr[n];
+    let mut row_idx = vec![0usize; nnz];
+    let bounds: Vec<usize> = chunk_bounds(&chunks, n)
+        .iter()
+        .map(|&j| col_ptr[j])
+        .collect();
+    chunks
+        .par_iter()
+        .zip(split_at_all(&mut row_idx, &bounds).into_par_iter())
+        .for_each(|(ch, rows)| {
+            let mut at = 0;
+            for j in ch.cols[0]..ch.cols[1] {
+                column(ch.body, j, &mut |i| {
+                    rows[at] = i;
+                    at += 1;
+                });
+            }
+        });
+    // values, in place
+    let mut val = vec![0.0; nnz];
+    let mut lift = vec![0.0; n];
+    let mut body_load = vec![0.0; n];
+    let lifts = split_at_all(&mut lift, &chunk_bounds(&chunks, n));
+    let body_loads = split_at_all(&mut body_load, &chunk_bounds(&chunks, n));
+    let vals = split_at_all(&mut val, &bounds);
+    let (col_ptr_ref, row_idx_ref) = (&col_ptr, &row_idx);
+    chunks
+        .par_iter()
+        .zip(
+            vals.into_par_iter()
+                .zip(lifts.into_par_iter().zip(body_loads)),
+        )
+        .map(|(ch, (vals, (lift, body_load)))| -> Result<()> {
+            let body = &bodies[ch.body];
+            let force = forces.get(ch.body).copied().filter(|f| *f != [0.0, 0.0]);
+            let q = body.space.patch.degree()[1];
+            let base = col_ptr_ref[ch.cols[0]];
+            for (e, el) in body.space.elements.iter().enumerate() {
+                let sy = el.spans[1];
+                if sy < ch.rows[0] || sy - q >= ch.rows[1] {
+                    continue;
+                }
+                let (ke, fe) = element_integrals(body, e, force)?;
+                let dofs = map.element_dofs(ch.body, &el.cps);
+                let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
+                for (bl, fb) in free.iter().enumerate() {
+                    let Some(j) = fb.filter(|&j| j >= ch.cols[0] && j < ch.cols[1]) else {
+                        continue;
+                    };
+                    // element rows are increasing, like the column's
+                    let rows = &row_idx_ref[col_ptr_ref[j]..col_ptr_ref[j + 1]];
+                    let mut at = 0;
+                    for (a, fa) in free.iter().enumerate() {
+                        let Some(i) = *fa else { continue };
+                        while rows[at] < i {
+                            at += 1;
+                        }
+                        vals[col_ptr_ref[j] - base + at] += ke[(a, bl)];
+                    }
+                }
+                for (a, fa) in free.iter().enumerate() {
+                    let Some(i) = fa.filter(|&i| i >= ch.cols[0] && i < ch.cols[1]) else {
+                        continue;
+                    };
+                    if force.is_some() {
+                        body_load[i - ch.cols[0]] += fe[a];
+                    }
+                    for (bl, fb) in free.iter().enumerate() {
+                        if fb.is_none() {
+                            lift[i - ch.cols[0]] += ke[(a, bl)] * map.prescribed(dofs[bl]);
+                        }
+                    }
+                }
+            }
+            Ok(())
+        })
+        .collect::<Result<Vec<()>>>()?;
+    let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(Bulk {
+        k: SparseColMat::new(symbolic, val),
+        lift,
+        body_load,
+    })
+}
+
+/// The free-column boundaries of the chunks: 0, …, n.
+fn chunk_bounds(chunks: &[Chunk], n: usize) -> Vec<usize> {
+    let mut b: Vec<usize> = chunks.iter().map(|c| c.cols[0]).collect();
+    b.push(n);
+    b
 }
 
 /// External loads of Eq. (3). `B` names the body: its index here, its
@@ -224,24 +525,54 @@ impl<B> Load<B> {
     }
 }
 
+/// The body a load acts on, checked.
+fn load_body<'a>(bodies: &'a [Body], load: &Load) -> Result<&'a Body> {
+    let bi = *load.body();
+    bodies.get(bi).ok_or_else(|| {
+        Error::invalid(
+            "load.body",
+            bi,
+            format!("there are {} bodies", bodies.len()),
+        )
+    })
+}
+
+fn check_force(force: [f64; 2]) -> Result<()> {
+    for (i, c) in force.iter().enumerate() {
+        crate::error::finite(&format!("load.body_force[{i}]"), *c)?;
+    }
+    Ok(())
+}
+
+/// The body forces of `loads` summed per body (for [`stiffness_matrix`]),
+/// and the other loads.
+pub fn split_body_forces(bodies: &[Body], loads: &[Load]) -> Result<(Vec<[f64; 2]>, Vec<Load>)> {
+    let mut forces = vec![[0.0; 2]; bodies.len()];
+    let mut rest = Vec::new();
+    for load in loads {
+        load_body(bodies, load)?;
+        match *load {
+            Load::BodyForce { body, force } => {
+                check_force(force)?;
+                forces[body][0] += force[0];
+                forces[body][1] += force[1];
+            }
+            _ => rest.push(load.clone()),
+        }
+    }
+    Ok((forces, rest))
+}
+
 /// The load vector L(v) over the free DOFs.
 pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<f64>> {
     let mut f = vec![0.0; map.n_free()];
     for load in loads {
         let bi = *load.body();
-        let body = bodies.get(bi).ok_or_else(|| {
-            Error::invalid(
-                "load.body",
-                bi,
-                format!("there are {} bodies", bodies.len()),
-            )
-        })?;
+        let body = load_body(bodies, load)?;
         let space = &body.space;
         match *load {
             Load::BodyForce { force, .. } => {
-                for (i, c) in force.iter().enumerate() {
-                    crate::error::finite(&format!("load.body_force[{i}]"), *c)?;
-                }
+                check_force(force)?;
                 // elements in parallel, scattered in order: deterministic
                 let fes: Vec<Result<DVector<f64>>> = space
                     .elements

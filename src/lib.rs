@@ -7,6 +7,7 @@
 pub mod assembly;
 #[doc(hidden)]
 pub mod book;
+pub mod condense;
 pub mod contact;
 pub mod dofs;
 pub mod error;

@@ -2,12 +2,12 @@
 //! and the residual (13) and kernels (17)–(18) the solvers need, all over
 //! the free DOFs.
 
-use crate::assembly::{load_vector, stiffness, Load, Triplets};
-use crate::contact::nitsche::{add_internal_force, heaviside, local_matrix};
+use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load};
+use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
-use crate::linsolve::{mul, Pattern};
+use crate::linsolve::mul;
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
 
@@ -18,6 +18,10 @@ pub enum Kernel<'a> {
     Tied,
     /// Eq. (18)–(19): active set of P at the given free displacement.
     Secant(&'a [f64]),
+    /// H given per contact point (1 active, 0 inactive): the secant
+    /// kernel of an active set chosen by the caller (see the floating
+    /// guard of [`crate::solver`]).
+    Activity(&'a [f64]),
 }
 
 /// Everything needed to evaluate R(u) and the kernels.
@@ -30,12 +34,9 @@ pub struct Problem {
     pub points: Vec<ContactPoint>,
     /// F − K_fc ū over the free DOFs.
     pub rhs: Vec<f64>,
-    /// Bulk stiffness over the free DOFs.
+    /// Bulk stiffness over the free DOFs, in the kernels' pattern (the
+    /// contact couplings between bodies stored as zeros).
     pub k: SparseColMat<usize, f64>,
-    /// The bulk stiffness triplet values, in the order of the pattern.
-    bulk: Vec<f64>,
-    /// The kernels' pattern: bulk triplets, then the contact blocks.
-    pattern: Pattern,
 }
 
 /// A kernel written as S + U Vᵀ: see [`Problem::kernel_split`].
@@ -69,12 +70,6 @@ impl Problem {
         loads: &[Load],
         pairs: Vec<ContactPair>,
     ) -> Result<Self> {
-        let (bulk, lift) = stiffness(&bodies, &map)?;
-        let mut rhs = load_vector(&bodies, &map, loads)?;
-        for (r, l) in rhs.iter_mut().zip(&lift) {
-            *r -= l;
-        }
-        let points = contact_points(&bodies, &map, &pairs)?;
         let n = map.n_free();
         if n == 0 {
             return Err(Error::invalid(
@@ -83,13 +78,24 @@ impl Problem {
                 "every degree of freedom is prescribed",
             ));
         }
+        let points = contact_points(&bodies, &map, &pairs)?;
         // One pattern for everything: the bulk stiffness is stored in the
-        // kernels' pattern with zero contact entries, which saves a second
-        // symbolic analysis of the largest triplet set.
-        let contact = Self::contact_triplets(&map, &points, |_, cp| local_matrix(cp, 1.0));
-        let pattern = Pattern::new(n, &[&bulk, &contact])?;
-        let k = pattern.matrix(&[&bulk.vals, &vec![0.0; contact.len()]])?;
-        let bulk = bulk.vals;
+        // kernels' pattern, with zeros where only contact couples two DOFs
+        // (two bodies), so every kernel has the same symbolic structure.
+        let mut couplings = Vec::new();
+        for cp in &points {
+            let free: Vec<usize> = cp.dofs.iter().filter_map(|&d| map.free(d)).collect();
+            for &i in &free {
+                couplings.extend(free.iter().map(|&j| (i, j)));
+            }
+        }
+        // body forces share the stiffness's quadrature
+        let (forces, others) = split_body_forces(&bodies, loads)?;
+        let Bulk { k, lift, body_load } = stiffness_matrix(&bodies, &map, &couplings, &forces)?;
+        let mut rhs = load_vector(&bodies, &map, &others)?;
+        for ((r, l), b) in rhs.iter_mut().zip(&lift).zip(&body_load) {
+            *r += b - l;
+        }
         Ok(Self {
             bodies,
             map,
@@ -98,8 +104,6 @@ impl Problem {
             points,
             rhs,
             k,
-            bulk,
-            pattern,
         })
     }
 
@@ -107,37 +111,106 @@ impl Problem {
         self.map.n_free()
     }
 
-    fn contact_triplets(
-        map: &DofMap,
-        points: &[ContactPoint],
-        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
-    ) -> Triplets {
-        let mut t = Triplets::default();
-        let mut scratch = vec![0.0; map.n_free()];
-        for (q, cp) in points.iter().enumerate() {
-            t.add_block(map, &cp.dofs, &cp.dofs, &local(q, cp), &mut scratch);
-        }
-        t
-    }
-
     /// H per contact point: 1 everywhere for the tied kernel (17), H(P(u))
     /// for the secant kernel (18)–(19).
     fn activity(&self, kind: Kernel) -> Vec<f64> {
         match kind {
             Kernel::Tied => vec![1.0; self.points.len()],
-            Kernel::Secant(u) => {
-                let full = self.map.expand(u);
-                self.points
-                    .iter()
-                    .map(|cp| heaviside(cp.p(&full)))
-                    .collect()
-            }
+            Kernel::Secant(u) => self.p_values(u).into_iter().map(heaviside).collect(),
+            Kernel::Activity(h) => h.to_vec(),
         }
     }
 
-    /// A matrix of the kernels' pattern: the bulk stiffness plus `contact`.
-    fn with_bulk(&self, contact: Triplets) -> Result<SparseColMat<usize, f64>> {
-        self.pattern.matrix(&[&self.bulk, &contact.vals])
+    /// P(u) = σ_n + γ g_n at every contact point, for the free displacement `u`.
+    pub fn p_values(&self, u: &[f64]) -> Vec<f64> {
+        let full = self.map.expand(u);
+        self.points.iter().map(|cp| cp.p(&full)).collect()
+    }
+
+    /// The free DOFs that some contact functional (σ_n or ⟦u_n⟧) reaches,
+    /// increasing: the layer L on which every contact term lives.
+    pub fn layer(&self) -> Vec<usize> {
+        let mut on = vec![false; self.n()];
+        for cp in &self.points {
+            for (k, &d) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self
+                    .map
+                    .free(d)
+                    .filter(|_| cp.sn[k] != 0.0 || cp.jn[k] != 0.0)
+                {
+                    on[i] = true;
+                }
+            }
+        }
+        (0..self.n()).filter(|&i| on[i]).collect()
+    }
+
+    /// A₀ = K + Σ_q w γ jn jnᵀ over every contact point (free DOFs): the
+    /// bulk stiffness plus the penalty term of the whole potential contact
+    /// boundary, symmetric positive definite whenever contact everywhere
+    /// holds the bodies. Every kernel (17)–(18), of every θ and active
+    /// set, is A₀ plus a matrix on the [`Problem::layer`].
+    pub fn bulk_plus_penalty(&self) -> Result<SparseColMat<usize, f64>> {
+        self.matrix_of(self.bulk_plus_penalty_values()?)
+    }
+
+    /// The values of [`Problem::bulk_plus_penalty`], in the pattern of
+    /// [`Problem::k`].
+    pub fn bulk_plus_penalty_values(&self) -> Result<Vec<f64>> {
+        self.values_with(|_, cp| {
+            let w = cp.weight * cp.gamma;
+            DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| w * cp.jn[a] * cp.jn[b])
+        })
+    }
+
+    /// The values of the bulk stiffness plus every point's `local` matrix
+    /// (rows and columns of prescribed DOFs dropped), in the pattern of
+    /// [`Problem::k`].
+    fn values_with(
+        &self,
+        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
+    ) -> Result<Vec<f64>> {
+        let mut val = self.k.val().to_vec();
+        let s = self.k.symbolic();
+        let (ptr, idx) = (s.col_ptr(), s.row_idx());
+        for (q, cp) in self.points.iter().enumerate() {
+            let m = local(q, cp);
+            let free: Vec<(usize, usize)> = cp
+                .dofs
+                .iter()
+                .enumerate()
+                .filter_map(|(a, &d)| self.map.free(d).map(|i| (a, i)))
+                .collect();
+            for &(b, j) in &free {
+                let col = &idx[ptr[j]..ptr[j + 1]];
+                for &(a, i) in &free {
+                    let at = col.binary_search(&i).map_err(|_| {
+                        Error::Singular(format!("entry ({i}, {j}) outside the kernels' pattern"))
+                    })?;
+                    val[ptr[j] + at] += m[(a, b)];
+                }
+            }
+        }
+        Ok(val)
+    }
+
+    /// A matrix of the kernels' pattern: the bulk stiffness plus every
+    /// point's `local` matrix.
+    fn with_bulk(
+        &self,
+        local: impl Fn(usize, &ContactPoint) -> DMatrix<f64>,
+    ) -> Result<SparseColMat<usize, f64>> {
+        self.matrix_of(self.values_with(local)?)
+    }
+
+    /// The matrix of the pattern of [`Problem::k`] with the values `val`.
+    fn matrix_of(&self, val: Vec<f64>) -> Result<SparseColMat<usize, f64>> {
+        let symbolic = self
+            .k
+            .symbolic()
+            .to_owned()
+            .map_err(|e| Error::Singular(format!("out of memory for a kernel: {e:?}")))?;
+        Ok(SparseColMat::new(symbolic, val))
     }
 
     /// The kernel matrix: bulk stiffness plus the contact matrix of `kind`.
@@ -145,9 +218,7 @@ impl Problem {
     /// serves them all.
     pub fn kernel(&self, kind: Kernel) -> Result<SparseColMat<usize, f64>> {
         let h = self.activity(kind);
-        self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
-            local_matrix(cp, h[q])
-        }))
+        self.with_bulk(|q, cp| local_matrix(cp, h[q]))
     }
 
     /// The kernel of `kind` split as S + U Vᵀ for
@@ -166,13 +237,13 @@ impl Problem {
             return Ok(None);
         }
         let h = self.activity(kind);
-        let spd = self.with_bulk(Self::contact_triplets(&self.map, &self.points, |q, cp| {
+        let spd = self.with_bulk(|q, cp| {
             let (w, g, th) = (cp.weight, cp.gamma, cp.theta);
             DMatrix::from_fn(cp.dofs.len(), cp.dofs.len(), |a, b| {
                 h[q] * w * g * cp.jn[a] * cp.jn[b]
                     - (1.0 - h[q]) * (th / g) * w * cp.sn[a] * cp.sn[b]
             })
-        }))?;
+        })?;
         let n = self.n();
         let mut row_of = vec![usize::MAX; n];
         let mut rows = Vec::new();
@@ -238,15 +309,28 @@ impl Problem {
     /// The residual (13), R(u) = L(v) − a(u, v) + contact work, over the
     /// free DOFs, and the contact state.
     pub fn residual(&self, u: &[f64]) -> (Vec<f64>, ContactState) {
+        self.residual_forced(u, &[])
+    }
+
+    /// As [`Problem::residual`], with the points marked in `forced` (empty:
+    /// none) treated as active whatever the sign of P: their contact force
+    /// is that of the tied law, \[P\]₋ replaced by P. This is the residual
+    /// whose linearisation is the secant kernel with those points active,
+    /// so a step with it closes their gap (the floating guard).
+    pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState) {
         let full = self.map.expand(u);
         let ku = mul(&self.k, u);
         let mut r: Vec<f64> = self.rhs.iter().zip(&ku).map(|(f, k)| f - k).collect();
         let mut active = 0;
         let mut g = Vec::new();
-        for cp in &self.points {
+        for (q, cp) in self.points.iter().enumerate() {
             g.clear();
             g.resize(cp.dofs.len(), 0.0);
-            if add_internal_force(cp, &full, &mut g) <= 0.0 {
+            let law = match forced.get(q) {
+                Some(true) => Law::Tied,
+                _ => Law::Contact,
+            };
+            if add_force(cp, &full, &mut g, law) <= 0.0 {
                 active += 1;
             }
             for (k, &dof) in cp.dofs.iter().enumerate() {
@@ -256,6 +340,32 @@ impl Problem {
             }
         }
         (r, ContactState { active })
+    }
+
+    /// The round-off of evaluating R at `u`: ε ‖ |f| + |K||u| + |g_c| ‖,
+    /// the sum of the magnitudes of every term of every component.
+    pub fn residual_floor(&self, u: &[f64]) -> f64 {
+        let full = self.map.expand(u);
+        let mut size: Vec<f64> = self.rhs.iter().map(|v| v.abs()).collect();
+        let s = self.k.symbolic();
+        let (ptr, idx, val) = (s.col_ptr(), s.row_idx(), self.k.val());
+        for j in 0..self.n() {
+            for k in ptr[j]..ptr[j + 1] {
+                size[idx[k]] += (val[k] * u[j]).abs();
+            }
+        }
+        let mut g = Vec::new();
+        for cp in &self.points {
+            g.clear();
+            g.resize(cp.dofs.len(), 0.0);
+            add_force(cp, &full, &mut g, Law::Contact);
+            for (k, &dof) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self.map.free(dof) {
+                    size[i] += g[k].abs();
+                }
+            }
+        }
+        f64::EPSILON * size.iter().map(|x| x * x).sum::<f64>().sqrt()
     }
 
     /// Rigid-body modes (full-length vectors, one per mode) that the

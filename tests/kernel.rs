@@ -1,19 +1,32 @@
-//! The kernels (17)–(18) factorised two exact ways: sparse LU of the
-//! assembled matrix, and Cholesky of its symmetric positive definite part
-//! with the Sherman–Morrison–Woodbury correction of the trace rows.
+//! The kernels (17)–(18) factorised on their own, two exact ways: sparse LU
+//! of the assembled matrix, and Cholesky of its symmetric positive definite
+//! part with the Sherman–Morrison–Woodbury correction of the trace rows;
+//! and the whole-body solves of both against the factorise-once default
+//! (tests/condense.rs checks the condensation itself).
 
 mod common;
 
-use common::{hertz_scene, norm, perturbed_solution, rough, taylor_scene};
-use iga_contact::contact::{Integration, Theta};
+use common::{assert_same_iteration, perturbed_solution, rough};
+use common::{HertzCase, TaylorCase};
+use iga_contact::contact::Integration;
 use iga_contact::linsolve::{mul, mul_transpose, Factor, Factoriser, Method};
 use iga_contact::problem::{Kernel, Problem};
 use iga_contact::solver::history::Event;
 use iga_contact::solver::kernel::{factor_kernel, Factorisation};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
 fn hertz(elements: usize, theta: f64) -> Problem {
-    common::hertz(2, elements, Theta::from_value(theta).unwrap())
+    HertzCase {
+        elements,
+        theta,
+        ..HertzCase::default()
+    }
+    .build()
+    .unwrap()
 }
 
 /// A displacement near the solution with a mixed active set.
@@ -77,7 +90,8 @@ fn the_low_rank_solve_equals_lu() {
         for kind in [Kernel::Tied, Kernel::Secant(&u)] {
             let mut fac = Factoriser::default();
             let mut events = Vec::new();
-            let low = factor_kernel(&p, &mut fac, kind, Factorisation::Auto, &mut events).unwrap();
+            let low =
+                factor_kernel(&p, &mut fac, kind, Factorisation::LowRank, &mut events).unwrap();
             assert!(events.is_empty(), "θ = {theta}: {events:?}");
             assert!(
                 matches!(low, Factor::LowRank(_)),
@@ -109,9 +123,14 @@ fn the_low_rank_solve_equals_lu() {
 #[test]
 fn the_symmetric_theta_one_kernel_is_indefinite() {
     for factor in [1.0, 100.0] {
-        let mut scene = hertz_scene(2, 8, Theta::Symmetric);
-        scene.nitsche_mut().for_each(|n| n.penalty_factor = factor);
-        let p = scene.build().unwrap();
+        let p = HertzCase {
+            elements: 8,
+            theta: 1.0,
+            penalty_factor: factor,
+            ..HertzCase::default()
+        }
+        .build()
+        .unwrap();
         let k = p.kernel(Kernel::Tied).unwrap();
         let err = Factoriser::default()
             .factor(&k, Method::Cholesky)
@@ -141,12 +160,13 @@ fn theta_one_falls_back_to_lu() {
 #[test]
 fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
     // lifted clear of the floor: no active point, S = K is singular
-    let mut scene = hertz_scene(2, 4, Theta::Incomplete);
-    if let iga_contact::scene::GeometrySpec::HalfDisk { center, .. } = &mut scene.bodies[0].geometry
-    {
-        center[1] += 0.01;
+    let p = HertzCase {
+        elements: 4,
+        lift: 0.01,
+        ..HertzCase::default()
     }
-    let p = scene.build().unwrap();
+    .build()
+    .unwrap();
     let u = vec![0.0; p.n()];
     assert_eq!(p.active_points(&u), 0);
     let split = p.kernel_split(Kernel::Secant(&u)).unwrap().unwrap();
@@ -162,7 +182,7 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
         &p,
         &mut Factoriser::default(),
         Kernel::Secant(&u),
-        Factorisation::Auto,
+        Factorisation::LowRank,
         &mut events,
     );
     assert_eq!(events, vec![Event::KernelLuFallback]);
@@ -171,16 +191,32 @@ fn a_floating_secant_kernel_is_not_taken_by_cholesky() {
 #[test]
 fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
     // a contrast of 10⁴ makes S much worse conditioned than the kernel
-    let mut scene = taylor_scene(Integration::Segment, Theta::Incomplete);
-    scene.body_mut("upper").unwrap().material.young *= 1e4;
-    let p = scene.build().unwrap();
-    let s = solve(&p, &SolverOptions::default()).unwrap();
+    let p = TaylorCase {
+        integration: Integration::Segment,
+        contrast: 1e4,
+        ..TaylorCase::default()
+    }
+    .build()
+    .unwrap();
+    // the damped BFGS over the whole body, as before the condensation
+    let body = SolverOptions {
+        line_search_after: 0,
+        ..SolverOptions::paper()
+    };
+    let s = solve(
+        &p,
+        &SolverOptions {
+            factorisation: Factorisation::LowRank,
+            ..body
+        },
+    )
+    .unwrap();
     assert!(s.history.count(|e| *e == Event::KernelRefined) >= 1);
     let lu = solve(
         &p,
         &SolverOptions {
             factorisation: Factorisation::Lu,
-            ..SolverOptions::default()
+            ..body
         },
     )
     .unwrap();
@@ -189,31 +225,47 @@ fn a_stiff_upper_block_needs_refinement_and_stays_exact() {
 
 #[test]
 fn both_factorisations_give_the_same_solutions() {
-    let taylor = common::taylor(Integration::Segment, Theta::Incomplete);
+    let taylor = TaylorCase {
+        integration: Integration::Segment,
+        ..TaylorCase::default()
+    }
+    .build()
+    .unwrap();
     let cases = [
         ("hertz 8²", hertz(8, 0.0)),
         ("hertz 8², θ = −1", hertz(8, -1.0)),
         ("taylor", taylor),
     ];
+    let damped = SolverOptions {
+        line_search_after: 0,
+        ..SolverOptions::paper()
+    };
+    let newton = SolverOptions {
+        kind: SolverKind::Newton,
+        ..damped
+    };
     for (name, p) in cases {
-        for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        for (label, opts) in [("bfgs", damped), ("newton", newton)] {
             let run = |how| {
                 solve(
                     &p,
                     &SolverOptions {
                         factorisation: how,
-                        ..SolverOptions::with_kind(kind)
+                        ..opts
                     },
                 )
                 .unwrap()
             };
-            let (a, b) = (run(Factorisation::Auto), run(Factorisation::Lu));
-            assert!(
-                diff(&a.u, &b.u) <= 1e-10,
-                "{name} {kind:?}: {:.2e}",
-                diff(&a.u, &b.u)
-            );
-            assert_eq!(a.history.len(), b.history.len(), "{name} {kind:?}");
+            let lu = run(Factorisation::Lu);
+            for how in [Factorisation::Auto, Factorisation::LowRank] {
+                let a = run(how);
+                assert!(
+                    diff(&a.u, &lu.u) <= 1e-10,
+                    "{name} {label} {how:?}: {:.2e}",
+                    diff(&a.u, &lu.u)
+                );
+                assert_same_iteration(&a.history, &lu.history, &format!("{name} {label} {how:?}"));
+            }
         }
     }
 }

@@ -465,7 +465,12 @@ fn an_output_path_that_is_a_file_is_refused_before_the_solve() {
     let dir = workdir("fail-fast");
     // A solve that would fail (one iteration allowed): if the output were
     // checked after the solve, the solver's error would be reported.
-    let text = scene_text("doomed", 8, 2) + "\n[solver]\nmax_iter = 1\n";
+    // (lifted off the floor and started from the tied kernel, which glues
+    // the block at its gap: one iteration cannot land it)
+    let text = scene_text("doomed", 8, 2).replace(
+        "y0 = 0.0, x1 = 1.0, y1 = 0.5",
+        "y0 = 0.1, x1 = 1.0, y1 = 0.6",
+    ) + "\n[solver]\nstart = \"tied\"\nmax_iter = 1\n";
     std::fs::write(dir.join("doomed.toml"), text).unwrap();
     let o = cli(&dir, &["run", "doomed.toml", "--out", "results"]);
     let err = String::from_utf8_lossy(&o.stderr);

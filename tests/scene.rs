@@ -373,10 +373,20 @@ fn a_failing_run_leaves_earlier_results_and_no_partial_files() {
     assert_eq!(before.len(), 3);
 
     // Same scene, different title (so every file would change), and a
-    // solver that cannot converge in one iteration.
+    // solver that cannot converge in one iteration: the paper's tied start
+    // glues the upper block at an initial gap.
     let bad_text = format!("{BASE}{outputs}")
         .replacen("title = \"base\"", "title = \"changed\"", 1)
-        .replacen("rtol = 1e-10", "rtol = 1e-10\nmax_iter = 1", 1);
+        .replacen(
+            "y0 = 0.5, x1 = 1.0, y1 = 1.0",
+            "y0 = 0.6, x1 = 1.0, y1 = 1.1",
+            1,
+        )
+        .replacen(
+            "rtol = 1e-10",
+            "rtol = 1e-10\nmax_iter = 1\nstart = \"tied\"",
+            1,
+        );
     let bad = Scene::from_toml_str(&bad_text).unwrap();
     let err = bad.run(&dir).unwrap_err();
     assert!(

@@ -23,14 +23,38 @@ pub fn heaviside(x: f64) -> f64 {
     }
 }
 
+/// Which force law a contact point follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Law {
+    /// Frictionless contact, Eq. (13): the force of \[P\]₋.
+    Contact,
+    /// Bonded in the normal direction: \[P\]₋ replaced by P, the law whose
+    /// tangent is the tied matrix (17). The floating guard uses it to pull
+    /// the nearest points of a floating body onto the obstacle.
+    Tied,
+}
+
 /// Adds the contact part of the internal force at one point to `g` (a
 /// vector over the point's local DOFs), for the full displacement `u`.
 /// Returns P(u).
 pub fn add_internal_force(cp: &ContactPoint, u: &[f64], g: &mut [f64]) -> f64 {
+    add_force(cp, u, g, Law::Contact)
+}
+
+/// [`add_internal_force`] under the force law `law`.
+pub fn add_force(cp: &ContactPoint, u: &[f64], g: &mut [f64], law: Law) -> f64 {
     let (sigma_n, jump) = cp.normal_stress_and_jump(u);
+    add_force_at(cp, sigma_n, jump, g, law)
+}
+
+/// [`add_force`] from the point's σ_n(u) and ⟦u_n⟧(u).
+pub fn add_force_at(cp: &ContactPoint, sigma_n: f64, jump: f64, g: &mut [f64], law: Law) -> f64 {
     let p = sigma_n + cp.gamma * (cp.g0 - jump);
     let (th, ga, w) = (cp.theta, cp.gamma, cp.weight);
-    let pm = negative_part(p);
+    let pm = match law {
+        Law::Contact => negative_part(p),
+        Law::Tied => p,
+    };
     for k in 0..cp.dofs.len() {
         let p_theta = th * cp.sn[k] - ga * cp.jn[k];
         g[k] += -(th / ga) * w * sigma_n * cp.sn[k] + (w / ga) * pm * p_theta;

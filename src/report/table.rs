@@ -29,6 +29,7 @@ pub enum Unit {
     /// Joule per metre of thickness, J/m.
     JoulePerMetre,
     Megabyte,
+    Gigabyte,
 }
 
 impl Unit {
@@ -37,6 +38,7 @@ impl Unit {
         match self {
             Unit::Millimetre | Unit::Millisecond => 1e3,
             Unit::Megapascal | Unit::Megabyte => 1e-6,
+            Unit::Gigabyte => 1e-9,
             _ => 1.0,
         }
     }
@@ -54,6 +56,7 @@ impl Unit {
             Unit::Millisecond => "ms",
             Unit::JoulePerMetre => "J/m",
             Unit::Megabyte => "MB",
+            Unit::Gigabyte => "GB",
         }
     }
 }

@@ -6,9 +6,10 @@
 //! stored pairs, with H_0 r a triangular solve with the kernel factors.
 //! Cost per iteration: O(n k) for k pairs plus one solve.
 
-use super::history::Event;
+use super::history::{Event, History};
 use super::kernel::Kernels;
-use super::{dot, line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker};
+use super::system::System;
+use super::{dot, line_search, norm, CorrectOn, Damping, Fallback, SolverOptions, Status, Tracker};
 use crate::error::Result;
 use crate::problem::Problem;
 
@@ -68,44 +69,77 @@ impl InverseUpdate {
     }
 }
 
-/// BFGS from the tied kernel (17); with `correct`, the paper's rule: after
-/// `correction_after` iterations, whenever ‖R‖ grows, refactorise the
-/// kernel as the secant matrix (18) at the current iterate and drop the pairs.
+/// BFGS from the kernel `opts.start`; with `correct`, the correction:
+/// after `correction_after` iterations, whenever the rule `opts.correct_on`
+/// fires, refactorise the kernel as the secant matrix (18) at the current
+/// iterate and drop the pairs. The paper's rule is [`CorrectOn::Growth`]
+/// after 8 iterations.
 ///
 /// The paper takes full steps. A full BFGS or secant step can overshoot
 /// into a far-off active set (the secant step is a Newton step, which can
-/// cycle), so once `opts.line_search_after` corrections have fired every
-/// step is damped by a backtracking line search on ‖R‖ — our addition,
-/// logged as [`Event::LineSearchCuts`]. The default, 0, damps from the
-/// start: measured in the stability atlas, it is what lets p = 3 and p = 5
-/// Hertz meshes converge; `usize::MAX` gives the paper's undamped iteration.
-pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<Solution> {
-    let n = problem.n();
-    let mut kernels = Kernels::new(problem, opts.factorisation)?;
-    let mut kernel = kernels.tied();
+/// cycle), so steps may be damped by a backtracking line search on ‖R‖ —
+/// our addition, logged as [`Event::LineSearchCuts`] — as `opts.damping`
+/// says: once `opts.line_search_after` corrections have fired
+/// (`usize::MAX`: the paper's undamped iteration), or once a correction
+/// revisits an active set (the default). A step whose kernel the floating
+/// guard completed is taken in full: it is the rigid motion that closes
+/// the gap.
+///
+/// With the default options — the balanced secant start, a correction at
+/// every change of the active set from the first iteration on — the
+/// kernel is the exact tangent of the current linear piece whenever the
+/// active set moves, and the BFGS pairs carry the iteration only while it
+/// stays: on Hertz the iteration and factorisation counts are those of
+/// semismooth Newton.
+///
+/// Returns the iterate (in the space of `sys`), the history and the
+/// number of kernel factorisations.
+pub(crate) fn solve(
+    sys: &mut dyn System<'_>,
+    problem: &Problem,
+    opts: &SolverOptions,
+    correct: bool,
+) -> Result<(Vec<f64>, History, usize)> {
+    let n = sys.dim();
     let mut u = vec![0.0; n];
-    let (mut r, mut state) = problem.residual(&u);
-    let mut tracker = Tracker::new(problem, opts, norm(&r));
-    if norm(&r) == 0.0 {
-        return Ok(tracker.finish(u, kernels.factorisations));
+    let (mut r, mut state, floor) = sys.residual_forced(&u, &[]);
+    let mut tracker = Tracker::new(opts, norm(&r));
+    if Tracker::at_floor(&r, floor) {
+        return Ok((u, tracker.history, 0));
     }
+    let mut kernels = Kernels::new(sys, problem);
+    let mut events = Vec::new();
+    let mut kernel = kernels.start(opts.start, &mut u, &mut r, &mut events)?;
     let mut update = InverseUpdate::default();
     let mut corrections = 0;
+    let mut cycled = false;
     loop {
-        let dir = update.apply(&r, |q| kernel.solve(q))?;
-        let damped = !tracker.history.is_empty() && corrections >= opts.line_search_after;
+        // right after a guarded (re)factorisation, the step follows the
+        // residual of the guard's force law
+        let drive = if kernel.guarded() && update.is_empty() {
+            kernels.sys.residual_forced(&u, &kernel.forced).0
+        } else {
+            r.clone()
+        };
+        let guarded = kernel.guarded() && update.is_empty();
+        let dir = update.apply(&drive, |q| kernel.factor.solve(q))?;
+        let damped = !tracker.history.is_empty()
+            && !guarded
+            && match opts.damping {
+                Damping::AfterCorrections => corrections >= opts.line_search_after,
+                Damping::OnCycle => cycled,
+            };
         // from a floating iterate, backtracking cannot help (see `Fallback::Full`)
         let fallback = if state.active == 0 {
             Fallback::Full
         } else {
             Fallback::Best
         };
-        let step = line_search(problem, &u, &dir, &r, damped, fallback);
+        let step = line_search(&*kernels.sys, &u, &dir, &r, damped, fallback);
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
         let r_new = step.r;
         state = step.state;
-        let mut events = kernels.take_startup_events();
         if step.cuts > 0 {
             events.push(Event::LineSearchCuts(step.cuts));
         }
@@ -115,16 +149,25 @@ pub fn solve(problem: &Problem, opts: &SolverOptions, correct: bool) -> Result<S
         }
         let k = tracker.history.len() + 1;
         let grew = norm(&r_new) > norm(&r);
-        let done = tracker.converged(&u, &du, &r_new);
-        if correct && !done && k > opts.correction_after && grew && norm(&r_new).is_finite() {
+        let done = tracker.converged(&u, &du, &r_new, step.floor);
+        let trigger = match opts.correct_on {
+            CorrectOn::Growth => grew,
+            CorrectOn::ActiveSet => grew || kernels.activity(&u) != kernel.activity,
+        };
+        if correct && !done && k > opts.correction_after && trigger && norm(&r_new).is_finite() {
             events.push(Event::Correction);
             corrections += 1;
             kernel = kernels.secant(&u, &mut events)?;
+            cycled |= kernels.cycled();
             update.clear();
         }
         r = r_new;
-        if let Status::Converged = tracker.record(&u, &du, &r, state.active, events)? {
-            return Ok(tracker.finish(u, kernels.factorisations));
+        let max_u = kernels.sys.max_displacement(&u);
+        let row_events = std::mem::take(&mut events);
+        if let Status::Converged =
+            tracker.record(&u, &du, &r, step.floor, state.active, max_u, row_events)?
+        {
+            return Ok((u, tracker.history, kernels.factorisations));
         }
     }
 }

@@ -11,7 +11,8 @@ pub enum Event {
     SkippedUpdate { curvature: f64 },
     /// The line search halved the step this many times.
     LineSearchCuts(usize),
-    /// The active set was empty, so the tied kernel (17) replaced the singular secant (18).
+    /// The active set did not hold a floating body, so the nearest contact
+    /// points were made active (and pulled onto the obstacle).
     FloatingGuard,
     /// A kernel factorised by Cholesky plus the low-rank correction failed
     /// the plain accuracy check, so its solves refine iteratively.
@@ -41,13 +42,16 @@ impl fmt::Display for Event {
 pub struct Iteration {
     /// 1-based iteration number.
     pub iteration: usize,
-    /// ‖R(u_k)‖₂ after the update.
+    /// ‖R(u_k)‖₂ after the update (on the contact layer, the residual of
+    /// the condensed problem, which is the whole residual: the interior
+    /// is relaxed).
     pub residual: f64,
     /// ‖R(u_k)‖ / ‖R(u_0)‖.
     pub relative_residual: f64,
-    /// ‖Δu‖₂ of the update.
+    /// ‖Δu‖₂ of the update (on the contact layer: of its DOFs).
     pub update: f64,
-    /// The displacement component of largest magnitude (signed).
+    /// The displacement component of largest magnitude (signed; on the
+    /// contact layer: of its DOFs, the body being recovered only at the end).
     pub max_displacement: f64,
     /// Number of contact quadrature points with P ≤ 0.
     pub active_points: usize,
@@ -71,8 +75,15 @@ impl History {
         self.rows.is_empty()
     }
 
+    /// The relative residual of the last iteration; with no iteration, 0
+    /// if the start was already converged (R₀ = 0, e.g. no load) and 1
+    /// otherwise.
     pub fn last_relative_residual(&self) -> f64 {
-        self.rows.last().map_or(1.0, |r| r.relative_residual)
+        match self.rows.last() {
+            Some(r) => r.relative_residual,
+            None if self.initial_residual == 0.0 => 0.0,
+            None => 1.0,
+        }
     }
 
     /// Number of iterations that carry `pred`.

@@ -1,55 +1,79 @@
 //! Semismooth Newton, Eq. (12)–(14), with the active-set tangent (18) and a
 //! backtracking line search on ‖R‖.
 //!
-//! Without globalisation the full-step method can cycle between active
-//! sets (period 4 on Hertz 8×8, p = 2). Since Δu = K_T⁻¹R is a descent
-//! direction of ½‖R‖² wherever R is differentiable, halving the step until
-//! ‖R‖ decreases enough (Armijo) removes the cycle. At a kink the direction
-//! may fail to descend; then the best step tried is taken.
+//! R is piecewise linear in u, so a full step lands on the root of the
+//! linear piece of the tangent's active set: undamped, the method is a map
+//! between active sets, and it can cycle (period 4 on Hertz 8×8, p = 2,
+//! from the tied start). Since Δu = K_T⁻¹R is a descent direction of
+//! ½‖R‖² wherever R is differentiable, halving the step until ‖R‖
+//! decreases enough (Armijo) removes the cycle; at a kink the direction may
+//! fail to descend, and then the best step tried is taken. But damping
+//! also slows the iteration down where no cycle threatens, so by default
+//! ([`Damping::OnCycle`]) steps are full until a tangent revisits an active
+//! set, and damped from then on.
 //!
-//! The first step uses the tied kernel (17), exactly like BFGS: at u = 0 an
-//! open initial gap leaves the active set empty and (18) singular.
+//! The first step uses the kernel of `opts.start`: the tied kernel (17), or
+//! the secant kernel after the rigid balance (an open initial gap leaves
+//! the active set empty and (18) singular).
 
-use super::history::Event;
+use super::history::{Event, History};
 use super::kernel::Kernels;
-use super::{line_search, norm, Fallback, Solution, SolverOptions, Status, Tracker};
+use super::system::System;
+use super::{line_search, norm, Damping, Fallback, SolverOptions, Status, Tracker};
 use crate::error::Result;
 use crate::problem::Problem;
 
-pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
-    let n = problem.n();
+/// Returns the iterate (in the space of `sys`), the history and the
+/// number of kernel factorisations.
+pub(crate) fn solve(
+    sys: &mut dyn System<'_>,
+    problem: &Problem,
+    opts: &SolverOptions,
+) -> Result<(Vec<f64>, History, usize)> {
+    let n = sys.dim();
     let mut u = vec![0.0; n];
-    let (mut r, _) = problem.residual(&u);
-    let mut tracker = Tracker::new(problem, opts, norm(&r));
-    if norm(&r) == 0.0 {
-        return Ok(tracker.finish(u, 0));
+    let (mut r, _, floor) = sys.residual_forced(&u, &[]);
+    let mut tracker = Tracker::new(opts, norm(&r));
+    if Tracker::at_floor(&r, floor) {
+        return Ok((u, tracker.history, 0));
     }
-    let mut kernels = Kernels::new(problem, opts.factorisation)?;
+    let mut kernels = Kernels::new(sys, problem);
+    let mut cycled = false;
     loop {
-        let mut events = kernels.take_startup_events();
-        let tangent = if tracker.history.is_empty() {
-            kernels.tied()
+        let mut events = Vec::new();
+        let first = tracker.history.is_empty();
+        let tangent = if first {
+            kernels.start(opts.start, &mut u, &mut r, &mut events)?
         } else {
             kernels.secant(&u, &mut events)?
         };
-        let dir = tangent.solve(&r)?;
-        let step = line_search(
-            problem,
-            &u,
-            &dir,
-            &r,
-            !tracker.history.is_empty(),
-            Fallback::Best,
-        );
+        cycled |= kernels.cycled();
+        let drive = if tangent.guarded() {
+            kernels.sys.residual_forced(&u, &tangent.forced).0
+        } else {
+            r.clone()
+        };
+        let dir = tangent.factor.solve(&drive)?;
+        // the first step, and a guarded one (the rigid motion that closes
+        // a gap), are taken in full
+        let damped = !first
+            && !tangent.guarded()
+            && match opts.damping {
+                Damping::AfterCorrections => true,
+                Damping::OnCycle => cycled,
+            };
+        let step = line_search(&*kernels.sys, &u, &dir, &r, damped, Fallback::Best);
         if step.cuts > 0 {
             events.push(Event::LineSearchCuts(step.cuts));
         }
-        let (alpha, trial_u, trial_r, state) = (step.alpha, step.u, step.r, step.state);
-        let du: Vec<f64> = dir.iter().map(|d| alpha * d).collect();
-        u = trial_u;
-        r = trial_r;
-        if let Status::Converged = tracker.record(&u, &du, &r, state.active, events)? {
-            return Ok(tracker.finish(u, kernels.factorisations));
+        let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
+        u = step.u;
+        r = step.r;
+        let max_u = kernels.sys.max_displacement(&u);
+        if let Status::Converged =
+            tracker.record(&u, &du, &r, step.floor, step.state.active, max_u, events)?
+        {
+            return Ok((u, tracker.history, kernels.factorisations));
         }
     }
 }

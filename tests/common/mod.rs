@@ -2,9 +2,11 @@
 
 #![allow(dead_code)] // each test file uses a different subset
 
+use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
+use iga_contact::solver::history::History;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 use std::path::PathBuf;
 
@@ -82,4 +84,142 @@ pub fn perturbed_solution(p: &Problem, amplitude: f64, seed: u64) -> Vec<f64> {
 
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Asserts that `a` and `b` record the same iteration: the same active
+/// points and events row by row, residuals to 1e-4 (rows at the round-off
+/// floor excepted). The last row, a confirmation at the round-off floor,
+/// may come one iteration apart.
+#[allow(dead_code)] // not every test crate compares histories
+pub fn assert_same_iteration(a: &History, b: &History, what: &str) {
+    let (la, lb) = (a.len(), b.len());
+    assert!(la.abs_diff(lb) <= 1, "{what}: {la} against {lb} iterations");
+    for (x, y) in a.rows.iter().zip(&b.rows).take(la.min(lb) - 1) {
+        assert_eq!(
+            x.active_points, y.active_points,
+            "{what}, row {}",
+            x.iteration
+        );
+        assert_eq!(x.events, y.events, "{what}, row {}", x.iteration);
+        let rel = (x.residual - y.residual).abs() / y.residual.max(1e-300);
+        assert!(
+            rel <= 1e-4 || y.relative_residual < 1e-9,
+            "{what}, row {}: residuals {:.6e} and {:.6e}",
+            x.iteration,
+            x.residual,
+            y.residual
+        );
+    }
+}
+
+/// A Hertz case built from `data/scenes/hertz.toml` with the fields the
+/// tests vary (the scene's values otherwise).
+#[derive(Clone, Debug)]
+pub struct HertzCase {
+    pub degree: usize,
+    pub elements: usize,
+    pub theta: f64,
+    pub penalty_factor: f64,
+    pub integration: Integration,
+    /// An isoparametric Lagrange mesh of this degree instead of IGA.
+    pub lagrange: Option<usize>,
+    /// The disk lifted above the floor by this much (negative: into it).
+    pub lift: f64,
+    /// The body force multiplied by this.
+    pub load_scale: f64,
+}
+
+impl Default for HertzCase {
+    fn default() -> Self {
+        Self {
+            degree: 2,
+            elements: 8,
+            theta: 0.0,
+            penalty_factor: 1.0,
+            integration: Integration::Gauss,
+            lagrange: None,
+            lift: 0.0,
+            load_scale: 1.0,
+        }
+    }
+}
+
+impl HertzCase {
+    pub fn scene(&self) -> Scene {
+        let n = [self.elements, self.elements];
+        let refine = match self.lagrange {
+            Some(q) => RefineSpec::lagrange(q, n),
+            None => RefineSpec::iga(self.degree, n),
+        };
+        let mut s = scene("hertz.toml")
+            .refined("disk", refine)
+            .unwrap()
+            .with_nitsche(|n| {
+                n.theta = Theta::from_value(self.theta).expect("θ ∈ {1, 0, −1}");
+                n.penalty_factor = self.penalty_factor;
+                n.integration = self.integration;
+            });
+        if let GeometrySpec::HalfDisk { center, .. } = &mut s.bodies[0].geometry {
+            center[1] += self.lift;
+        }
+        for l in &mut s.loads {
+            if let Load::BodyForce { force, .. } = l {
+                force.iter_mut().for_each(|f| *f *= self.load_scale);
+            }
+        }
+        s
+    }
+
+    pub fn build(&self) -> iga_contact::Result<Problem> {
+        self.scene().build()
+    }
+}
+
+/// A Taylor case built from `data/scenes/taylor.toml`.
+#[derive(Clone, Debug)]
+pub struct TaylorCase {
+    pub theta: f64,
+    pub penalty_factor: f64,
+    pub integration: Integration,
+    /// The upper block lifted by this much (negative: into the lower one).
+    pub gap: f64,
+    /// The upper block's Young's modulus multiplied by this.
+    pub contrast: f64,
+}
+
+impl Default for TaylorCase {
+    fn default() -> Self {
+        Self {
+            theta: 0.0,
+            penalty_factor: 1.0,
+            integration: Integration::Segment,
+            gap: 0.0,
+            contrast: 1.0,
+        }
+    }
+}
+
+impl TaylorCase {
+    pub fn scene(&self) -> Scene {
+        let mut s = scene("taylor.toml").with_nitsche(|n| {
+            n.theta = Theta::from_value(self.theta).expect("θ ∈ {1, 0, −1}");
+            n.penalty_factor = self.penalty_factor;
+            n.integration = self.integration;
+        });
+        if let GeometrySpec::Rectangle { y0, y1, .. } = &mut s.bodies[1].geometry {
+            *y0 += self.gap;
+            *y1 += self.gap;
+        }
+        s.bodies[1].material.young *= self.contrast;
+        s
+    }
+
+    pub fn build(&self) -> iga_contact::Result<Problem> {
+        self.scene().build()
+    }
+}
+
+/// The vertical load the contact must carry (the applied resultant, up).
+pub fn vertical_load(p: &Problem) -> f64 {
+    -iga_contact::post::applied_resultant(p).unwrap()[1]
 }

@@ -1,0 +1,262 @@
+//! The contact problem condensed exactly onto the layer L
+//! ([`crate::condense`]).
+//!
+//! With A₀ = K + G, G = Σ_q w γ jn jnᵀ, factorised once and its interior
+//! eliminated, the residual (13) on L at an interior-relaxed displacement
+//! (R_I = 0) is
+//!
+//!   R̂(u_L) = f̂_L − S₀ u_L + G u_L − g_c(u_L),
+//!
+//! where g_c is the contact internal force, and the kernel of an active
+//! set H is
+//!
+//!   T(H) = S₀ − G + Σ_q (point matrix of q at H_q),
+//!
+//! the exact Schur complement of the full kernel. Both are dense ℓ × ℓ
+//! operations, so an iteration costs O(ℓ²) and a kernel O(ℓ³) — against
+//! a sparse triangular pass over the whole body before.
+
+use crate::condense::Condensation;
+use crate::contact::nitsche::{add_force_at, local_matrix, Law};
+use crate::contact::ContactPoint;
+use crate::error::{Error, Result};
+use crate::problem::{ContactState, Problem};
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+
+/// A contact point in layer numbering: its free DOFs as layer positions,
+/// the functionals on them, and the parts of σ_n and ⟦u_n⟧ that come
+/// from prescribed displacements.
+struct LayerPoint {
+    at: Vec<usize>,
+    /// Index of each entry of `at` in the point's own DOF list.
+    local: Vec<usize>,
+    sigma_fixed: f64,
+    jump_fixed: f64,
+}
+
+/// The condensed problem: S₀, f̂_L and the contact points on L.
+pub struct TraceProblem<'a> {
+    problem: &'a Problem,
+    cond: Condensation,
+    points: Vec<LayerPoint>,
+    /// f̂_L, the condensed load.
+    fhat: Vec<f64>,
+    /// The forward state of the load (for the recovery of the body).
+    load: Mat<f64>,
+}
+
+/// Layers larger than this are not condensed: the dense ℓ × ℓ kernels
+/// would need more than about 2 GB (three copies of 8ℓ² bytes).
+pub const MAX_LAYER: usize = 9000;
+
+impl<'a> TraceProblem<'a> {
+    /// Factorises A₀ and condenses the load. Fails with
+    /// [`Error::Singular`] if A₀ is not positive definite.
+    pub fn new(problem: &'a Problem) -> Result<Self> {
+        let layer = problem.layer();
+        if layer.len() > MAX_LAYER {
+            return Err(Error::Singular(format!(
+                "the contact layer has {} DOFs, more than the {MAX_LAYER} a dense trace kernel allows",
+                layer.len()
+            )));
+        }
+        let a0 = problem.bulk_plus_penalty_values()?;
+        let cond = Condensation::new(
+            faer::sparse::SparseColMatRef::new(problem.k.symbolic(), &a0),
+            layer,
+        )?;
+        drop(a0);
+        let mut at_layer = vec![usize::MAX; problem.n()];
+        for (k, &i) in cond.layer().iter().enumerate() {
+            at_layer[i] = k;
+        }
+        let points = problem
+            .points
+            .iter()
+            .map(|cp| {
+                let mut p = LayerPoint {
+                    at: Vec::new(),
+                    local: Vec::new(),
+                    sigma_fixed: 0.0,
+                    jump_fixed: 0.0,
+                };
+                for (k, &d) in cp.dofs.iter().enumerate() {
+                    match problem.map.free(d) {
+                        Some(i) if at_layer[i] != usize::MAX => {
+                            p.at.push(at_layer[i]);
+                            p.local.push(k);
+                        }
+                        Some(_) => {} // σ_n and ⟦u_n⟧ do not see it
+                        None => {
+                            let v = problem.map.prescribed(d);
+                            p.sigma_fixed += cp.sn[k] * v;
+                            p.jump_fixed += cp.jn[k] * v;
+                        }
+                    }
+                }
+                p
+            })
+            .collect();
+        let (load, fhat) = cond.condense_vec(&problem.rhs);
+        Ok(Self {
+            problem,
+            cond,
+            points,
+            fhat,
+            load,
+        })
+    }
+
+    /// ℓ, the number of layer DOFs.
+    pub fn dim(&self) -> usize {
+        self.fhat.len()
+    }
+
+    pub fn condensation(&self) -> &Condensation {
+        &self.cond
+    }
+
+    fn pairs(&self) -> impl Iterator<Item = (&ContactPoint, &LayerPoint)> {
+        self.problem.points.iter().zip(&self.points)
+    }
+
+    /// (σ_n, ⟦u_n⟧) of a point at the layer displacement `u`.
+    fn stress_and_jump(cp: &ContactPoint, lp: &LayerPoint, u: &[f64]) -> (f64, f64) {
+        let (mut s, mut j) = (lp.sigma_fixed, lp.jump_fixed);
+        for (&i, &k) in lp.at.iter().zip(&lp.local) {
+            s += cp.sn[k] * u[i];
+            j += cp.jn[k] * u[i];
+        }
+        (s, j)
+    }
+
+    /// P at every contact point for the layer displacement `u`.
+    pub fn p_values(&self, u: &[f64]) -> Vec<f64> {
+        self.pairs()
+            .map(|(cp, lp)| {
+                let (s, j) = Self::stress_and_jump(cp, lp, u);
+                s + cp.gamma * (cp.g0 - j)
+            })
+            .collect()
+    }
+
+    /// R̂(u) over the layer, with the points marked in `forced` under the
+    /// tied law (see [`Problem::residual_forced`]); also the round-off
+    /// floor of its evaluation, ε ‖ |f̂| + |S₀||u| + |G||u| + |g_c| ‖.
+    pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, f64) {
+        let ell = self.dim();
+        let s0 = self.cond.schur();
+        let mut r = self.fhat.clone();
+        let mut size: Vec<f64> = self.fhat.iter().map(|v| v.abs()).collect();
+        for j in 0..ell {
+            let uj = u[j];
+            if uj == 0.0 {
+                continue;
+            }
+            for (i, (ri, si)) in r.iter_mut().zip(size.iter_mut()).enumerate() {
+                let a = s0[(i, j)] * uj;
+                *ri -= a;
+                *si += a.abs();
+            }
+        }
+        let mut active = 0;
+        for (q, (cp, lp)) in self.pairs().enumerate() {
+            // + G u on the free layer DOFs (the penalty added to A₀)
+            let ju: f64 = lp
+                .at
+                .iter()
+                .zip(&lp.local)
+                .map(|(&i, &k)| cp.jn[k] * u[i])
+                .sum();
+            let wg = cp.weight * cp.gamma;
+            let (sigma, jump) = Self::stress_and_jump(cp, lp, u);
+            let mut g = vec![0.0; cp.dofs.len()];
+            let law = match forced.get(q) {
+                Some(true) => Law::Tied,
+                _ => Law::Contact,
+            };
+            if add_force_at(cp, sigma, jump, &mut g, law) <= 0.0 {
+                active += 1;
+            }
+            for (&i, &k) in lp.at.iter().zip(&lp.local) {
+                let a = wg * cp.jn[k] * ju;
+                r[i] += a - g[k];
+                size[i] += a.abs() + g[k].abs();
+            }
+        }
+        let floor = f64::EPSILON * super::norm(&size);
+        (r, ContactState { active }, floor)
+    }
+
+    /// T(H) = S₀ − G + Σ_q (point matrix at H_q), dense.
+    pub fn kernel(&self, h: &[f64]) -> Mat<f64> {
+        let mut t = self.cond.schur().clone();
+        for (q, (cp, lp)) in self.pairs().enumerate() {
+            let m = local_matrix(cp, h[q]);
+            let wg = cp.weight * cp.gamma;
+            for (&i, &a) in lp.at.iter().zip(&lp.local) {
+                for (&j, &b) in lp.at.iter().zip(&lp.local) {
+                    t[(i, j)] += m[(a, b)] - wg * cp.jn[a] * cp.jn[b];
+                }
+            }
+        }
+        t
+    }
+
+    /// The layer part of a full DOF vector.
+    pub fn coords(&self, full: &[f64]) -> Vec<f64> {
+        let free = self.problem.map.restrict(full);
+        self.cond.layer().iter().map(|&i| free[i]).collect()
+    }
+
+    /// The free displacement of the bodies whose layer part is `u`, the
+    /// interior relaxed (R_I = 0): one backward pass.
+    pub fn recover(&self, u: &[f64]) -> Vec<f64> {
+        self.cond.extend_vec(self.load.clone(), u)
+    }
+
+    /// The free displacement solving A x = b for A = A₀ + C, from the
+    /// dense factorisation of S₀ + C (the full-space kernel solve).
+    pub fn solve_full(&self, kernel: &DenseLu, b: &[f64]) -> Result<Vec<f64>> {
+        let (state, bl) = self.cond.condense_vec(b);
+        let xl = kernel.solve(&bl)?;
+        Ok(self.cond.extend_vec(state, &xl))
+    }
+}
+
+/// A dense LU factorisation (partial pivoting) of a trace kernel.
+pub struct DenseLu(faer::linalg::solvers::PartialPivLu<f64>);
+
+impl DenseLu {
+    /// Fails with [`Error::Singular`] when a pivot vanishes relative to
+    /// the largest (below 10⁻¹⁴ of it): the kernel does not hold the bodies.
+    pub fn new(a: &Mat<f64>) -> Result<Self> {
+        let lu = a.partial_piv_lu();
+        let d = lu.U().diagonal().column_vector();
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for v in d.iter() {
+            lo = lo.min(v.abs());
+            hi = hi.max(v.abs());
+        }
+        let held = lo > 1e-14 * hi && hi.is_finite();
+        if !held {
+            return Err(Error::Singular(format!(
+                "the trace kernel is singular (pivots from {lo:.2e} to {hi:.2e})"
+            )));
+        }
+        Ok(Self(lu))
+    }
+
+    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>> {
+        let x = self.0.solve(faer::ColRef::from_slice(b));
+        let x: Vec<f64> = x.iter().copied().collect();
+        if x.iter().all(|v| v.is_finite()) {
+            Ok(x)
+        } else {
+            Err(Error::Singular(
+                "the solve produced non-finite values".into(),
+            ))
+        }
+    }
+}

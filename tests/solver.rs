@@ -1,0 +1,280 @@
+//! The default solver: large initial gaps, zero load, the round-off
+//! stopping rule, iteration counts, and why the tied start (17) is not the
+//! default.
+
+use iga_contact::assembly::Load;
+mod common;
+
+use common::HertzCase;
+use iga_contact::contact::{ContactPair, Master};
+use iga_contact::dofs::{Body, DofMap};
+use iga_contact::geometry;
+use iga_contact::material::{Material, Plane};
+use iga_contact::nurbs::Side;
+use iga_contact::problem::Problem;
+use iga_contact::solver::trace::TraceProblem;
+use iga_contact::solver::{solve, IterationSpace, SolverKind, SolverOptions, Start};
+
+const WIDTH: f64 = 1.0;
+const HEIGHT: f64 = 0.5;
+const PRESSURE: f64 = 1e7;
+
+/// A block [0, 1] × [gap, gap + 0.5] held only by rollers on its left
+/// edge (u_x = 0), pushed down by a pressure on its top, above the rigid
+/// floor y = 0: only a rigid motion closes the gap.
+fn block(gap: f64, elements: [usize; 2], pressure: f64) -> Problem {
+    let patch = geometry::rectangle(0.0, gap, WIDTH, gap + HEIGHT)
+        .unwrap()
+        .k_refined(2, elements)
+        .unwrap();
+    let bodies = vec![Body {
+        name: "block".into(),
+        space: iga_contact::space::Space::new(patch, None).unwrap(),
+        material: Material::new(1e9, 0.3, Plane::Strain).unwrap(),
+    }];
+    let mut b = DofMap::builder(&bodies);
+    b.fix_side(0, Side::XiMin, 0, 0.0).unwrap();
+    let map = b.build();
+    let loads = [Load::Pressure {
+        body: 0,
+        side: Side::EtaMax,
+        pressure,
+    }];
+    let floor = geometry::segment([-1.0, 0.0], [2.0, 0.0]).unwrap();
+    let pair = ContactPair::new(0, Side::EtaMin, Master::Rigid(floor));
+    Problem::new(bodies, map, &loads, vec![pair]).unwrap()
+}
+
+#[test]
+fn a_block_above_the_floor_closes_gaps_up_to_its_height() {
+    let load = PRESSURE * WIDTH;
+    for ratio in [0.2, 1.0] {
+        let p = block(ratio * HEIGHT, [6, 3], PRESSURE);
+        for (name, opts) in [
+            ("default", SolverOptions::default()),
+            ("newton", SolverOptions::with_kind(SolverKind::Newton)),
+            (
+                "default, body",
+                SolverOptions {
+                    space: IterationSpace::Body,
+                    ..SolverOptions::default()
+                },
+            ),
+        ] {
+            let s = solve(&p, &opts).unwrap_or_else(|e| panic!("gap {ratio}·h, {name}: {e}"));
+            assert!(
+                s.history.len() <= 6,
+                "gap {ratio}·h, {name}: {} iterations",
+                s.history.len()
+            );
+            let f = iga_contact::post::contact_resultant(&p, &s.full);
+            assert!(
+                (f[1] - load).abs() <= 1e-8 * load,
+                "gap {ratio}·h, {name}: contact force {} against the load {load}",
+                f[1]
+            );
+            // the block came down by the gap (plus its compression)
+            let top = s
+                .full
+                .iter()
+                .skip(1)
+                .step_by(2)
+                .fold(0.0f64, |m, v| m.min(*v));
+            assert!(
+                top < -ratio * HEIGHT,
+                "gap {ratio}·h, {name}: u_y min {top}"
+            );
+        }
+    }
+}
+
+/// A curved body too: the Hertz disk lifted by 0.2 and 1.0 times its
+/// diameter lands on the floor with the unlifted iteration count.
+#[test]
+fn a_lifted_disk_lands_on_the_floor() {
+    let load = common::vertical_load(&HertzCase::default().build().unwrap());
+    let on_floor = solve(
+        &HertzCase::default().build().unwrap(),
+        &SolverOptions::default(),
+    )
+    .unwrap()
+    .history
+    .len();
+    for lift in [0.08, 0.4] {
+        let p = HertzCase {
+            lift,
+            ..HertzCase::default()
+        }
+        .build()
+        .unwrap();
+        for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+            let s = solve(&p, &SolverOptions::with_kind(kind)).unwrap();
+            assert!(s.history.len() <= on_floor + 1, "lift {lift}, {kind:?}");
+            let f = iga_contact::post::contact_resultant(&p, &s.full)[1];
+            assert!(
+                (f - load).abs() <= 1e-8 * load,
+                "lift {lift}, {kind:?}: {f}"
+            );
+        }
+    }
+}
+
+/// The paper's iteration cannot: its tied start glues the block at its
+/// gap, the block then hovers (no active point, ‖R‖ = ‖R₀‖) while BFGS
+/// moves it in small rigid steps, and the first correction is allowed only
+/// after 8 iterations — too late.
+#[test]
+fn the_paper_iteration_leaves_a_block_hovering_above_a_large_gap() {
+    let p = block(0.2 * HEIGHT, [6, 3], PRESSURE);
+    let err = solve(&p, &SolverOptions::paper()).expect_err("the paper's iteration fails");
+    let iga_contact::Error::NotConverged { history, .. } = err else {
+        panic!("{err}")
+    };
+    assert!(history.rows[..3].iter().all(|r| r.active_points == 0));
+    assert!(history.rows[..3]
+        .iter()
+        .all(|r| (r.relative_residual - 1.0).abs() < 1e-9));
+}
+
+#[test]
+fn a_problem_without_load_converges_in_no_iteration() {
+    let p = block(0.1, [4, 2], 0.0);
+    for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        let s = solve(&p, &SolverOptions::with_kind(kind)).unwrap();
+        assert_eq!(s.history.len(), 0, "{kind:?}");
+        assert_eq!(s.history.initial_residual, 0.0);
+        assert_eq!(s.history.last_relative_residual(), 0.0);
+        assert!(s.u.iter().all(|&v| v == 0.0));
+    }
+}
+
+/// A tolerance no floating-point evaluation of R can meet still ends in
+/// convergence, at the round-off floor, and the solution is the one a
+/// reachable tolerance gives.
+#[test]
+fn the_stopping_rule_is_attainable_at_the_round_off_floor() {
+    let p = HertzCase {
+        elements: 16,
+        ..HertzCase::default()
+    }
+    .build()
+    .unwrap();
+    let usual = solve(&p, &SolverOptions::default()).unwrap();
+    for space in [IterationSpace::Auto, IterationSpace::Body] {
+        let strict = SolverOptions {
+            rtol: 1e-300,
+            utol: 1e-300,
+            space,
+            ..SolverOptions::default()
+        };
+        let s = solve(&p, &strict).unwrap_or_else(|e| panic!("{space:?}: {e}"));
+        let last = s.history.rows.last().unwrap();
+        assert!(
+            last.relative_residual < 1e-11,
+            "{space:?}: {}",
+            last.relative_residual
+        );
+        assert!(s.history.len() <= usual.history.len() + 2, "{space:?}");
+        let d: f64 =
+            s.u.iter()
+                .zip(&usual.u)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt()
+                / usual.u.iter().map(|a| a * a).sum::<f64>().sqrt();
+        assert!(d <= 1e-11, "{space:?}: {d:.2e}");
+    }
+}
+
+/// The default solver's iteration count stays flat over the small Hertz
+/// meshes (the example `solver_scaling` continues to 512²).
+#[test]
+fn the_default_solver_needs_few_iterations_on_hertz() {
+    let mut counts = Vec::new();
+    for (degree, elements) in [(2, 8), (2, 16), (2, 32), (2, 64), (3, 16), (4, 16)] {
+        let p = HertzCase {
+            degree,
+            elements,
+            ..HertzCase::default()
+        }
+        .build()
+        .unwrap();
+        let s = solve(&p, &SolverOptions::default()).unwrap();
+        assert!(s.on_trace);
+        counts.push(s.history.len());
+    }
+    assert!(counts.iter().all(|&c| c <= 8), "{counts:?}");
+}
+
+/// Why the tied start overshoots at high degree: its θ = 0 consistency
+/// term nearly cancels the penalty on a mode of the far arc, where the
+/// floor's normal is tangent to the disk; a larger penalty removes it.
+#[test]
+fn the_tied_kernel_is_weak_on_the_far_arc_for_the_empirical_penalty() {
+    let weakest = |factor: f64| {
+        let p = HertzCase {
+            degree: 4,
+            elements: 64,
+            penalty_factor: factor,
+            ..HertzCase::default()
+        }
+        .build()
+        .unwrap();
+        let t = TraceProblem::new(&p).unwrap();
+        let svd = t.kernel(&vec![1.0; p.points.len()]).svd().unwrap();
+        let ell = t.dim();
+        let smin = svd.S().column_vector()[ell - 1];
+        let s0 = t
+            .condensation()
+            .schur()
+            .self_adjoint_eigenvalues(faer::Side::Lower)
+            .unwrap()[0];
+        // share of the weakest mode on the last fifth of the arc (ξ ≥ 0.8)
+        let n0 = p.bodies[0].space.patch.n()[0];
+        let mut free_to_cp = vec![0usize; p.n()];
+        for g in 0..p.map.n_total() {
+            if let Some(i) = p.map.free(g) {
+                free_to_cp[i] = g / 2;
+            }
+        }
+        let v = svd.V().col(ell - 1);
+        let far: f64 = t
+            .condensation()
+            .layer()
+            .iter()
+            .enumerate()
+            .filter(|&(_, &i)| 5 * (free_to_cp[i] % n0) >= 4 * n0)
+            .map(|(k, _)| v[k] * v[k])
+            .sum();
+        (smin / s0, far)
+    };
+    let (ratio, far) = weakest(1.0);
+    assert!(ratio < 0.5, "σ_min(tied)/λ_min(S₀) = {ratio:.3}");
+    assert!(far > 0.9, "far-arc share {far:.3}");
+    let (ratio, _) = weakest(3.0);
+    assert!(
+        ratio > 0.9,
+        "penalty ×3: σ_min(tied)/λ_min(S₀) = {ratio:.3}"
+    );
+    // the default start never ties the far arc
+    assert_eq!(SolverOptions::default().start, Start::Secant);
+}
+
+#[test]
+fn the_layer_space_needs_the_factorise_once_kernels() {
+    let p = block(0.1, [4, 2], PRESSURE);
+    let opts = SolverOptions {
+        space: IterationSpace::Trace,
+        factorisation: iga_contact::solver::Factorisation::Lu,
+        ..SolverOptions::default()
+    };
+    let err = solve(&p, &opts).expect_err("invalid combination");
+    assert_eq!(err.kind(), "invalid_input");
+    assert!(err.to_string().contains("solver.space"), "{err}");
+    // with the body space the same kernels work
+    let body = SolverOptions {
+        space: IterationSpace::Body,
+        ..opts
+    };
+    assert!(solve(&p, &body).is_ok());
+}
