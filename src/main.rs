@@ -10,7 +10,7 @@
 
 use clap::{Parser, Subcommand};
 use iga_contact::report::atomic::{self, OutputSet};
-use iga_contact::report::chapter::{generated_root, PROGRAMS};
+use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
 use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::Scene;
 use iga_contact::Error;
@@ -121,6 +121,10 @@ enum Command {
         /// Run only the chapter program of this name.
         #[arg(long)]
         only: Option<String>,
+        /// Run the heavy programs too (the solver scaling benchmark and the
+        /// reliability campaign: many minutes and gigabytes).
+        #[arg(long)]
+        all: bool,
     },
 }
 
@@ -188,7 +192,7 @@ fn check(scene_path: &Path, max_memory: Option<String>) -> Result<(), Failure> {
     Ok(())
 }
 
-fn reproduce(only: Option<String>) -> Result<(), Failure> {
+fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {
     let mut all: Vec<_> = PROGRAMS.to_vec();
     if let Some(name) = &only {
         let names: Vec<&str> = all.iter().map(|p| p.example).collect();
@@ -201,6 +205,8 @@ fn reproduce(only: Option<String>) -> Result<(), Failure> {
             return Err(Failure::from_error(None, &e));
         }
         all.retain(|p| p.example == name);
+    } else if !heavy {
+        all.retain(|p| p.cost == Cost::Quick);
     }
     // Fail fast: every chapter folder must be able to take a new set of
     // outputs before any program runs (each program then replaces its folder
@@ -309,7 +315,7 @@ fn main() -> ExitCode {
             max_memory,
         } => run(&scene, out, max_memory),
         Command::Check { scene, max_memory } => check(&scene, max_memory),
-        Command::Reproduce { only } => reproduce(only),
+        Command::Reproduce { only, all } => reproduce(only, all),
     });
     match outcome {
         Ok(Ok(())) => ExitCode::SUCCESS,

@@ -7,7 +7,8 @@
 mod common;
 
 use common::example;
-use iga_contact::report::chapter::{generated_root, Manifest, PROGRAMS};
+use iga_contact::report::atomic;
+use iga_contact::report::chapter::{generated_root, Cost, Manifest, PROGRAMS};
 use iga_contact::report::facts::{self, Facts};
 use std::path::{Path, PathBuf};
 
@@ -112,7 +113,8 @@ fn regenerates_identically(example_name: &str, chapter: &str) {
         "{chapter}: manifest"
     );
     for name in listing(&committed) {
-        if manifest.timed_files.contains(&name) {
+        // The output manifest records file sizes, which timed files change.
+        if manifest.timed_files.contains(&name) || name == atomic::MANIFEST {
             continue;
         }
         let (a, b) = (
@@ -147,7 +149,7 @@ fn regenerates_identically(example_name: &str, chapter: &str) {
 /// again, writes the committed bytes.
 #[test]
 fn the_generated_data_is_what_the_programs_compute() {
-    for p in PROGRAMS {
+    for p in PROGRAMS.iter().filter(|p| p.cost == Cost::Quick) {
         regenerates_identically(p.example, p.chapter);
     }
 }

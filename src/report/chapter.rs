@@ -13,52 +13,49 @@ pub fn generated_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated")
 }
 
+/// How long a chapter program runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cost {
+    /// Seconds to a minute: run by the main job, and run again by the tests,
+    /// which compare its output with the committed files.
+    Quick,
+    /// Minutes and gigabytes (a scaling benchmark, a fault-injection
+    /// campaign): run by `iga-contact reproduce --all`; the book states when
+    /// its committed results were measured.
+    Heavy,
+}
+
 /// A chapter program: the Cargo example that regenerates the generated
 /// folder `chapter` of the book.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Program {
     pub example: &'static str,
     pub chapter: &'static str,
+    pub cost: Cost,
+}
+
+const fn program(example: &'static str, chapter: &'static str, cost: Cost) -> Program {
+    Program {
+        example,
+        chapter,
+        cost,
+    }
 }
 
 /// Every chapter program, in the order of the book.
-pub const PROGRAMS: [Program; 9] = [
-    Program {
-        example: "formulation",
-        chapter: "formulation",
-    },
-    Program {
-        example: "lame",
-        chapter: "lame",
-    },
-    Program {
-        example: "kernel_factorisation",
-        chapter: "kernel",
-    },
-    Program {
-        example: "taylor",
-        chapter: "taylor",
-    },
-    Program {
-        example: "hertz",
-        chapter: "hertz",
-    },
-    Program {
-        example: "iga_vs_fem",
-        chapter: "iga_vs_fem",
-    },
-    Program {
-        example: "error_vs_time",
-        chapter: "error_vs_time",
-    },
-    Program {
-        example: "solvers",
-        chapter: "solvers",
-    },
-    Program {
-        example: "stability",
-        chapter: "stability",
-    },
+pub const PROGRAMS: [Program; 12] = [
+    program("formulation", "formulation", Cost::Quick),
+    program("lame", "lame", Cost::Quick),
+    program("taylor", "taylor", Cost::Quick),
+    program("hertz", "hertz", Cost::Quick),
+    program("two_cylinders", "two_cylinders", Cost::Quick),
+    program("iga_vs_fem", "iga_vs_fem", Cost::Quick),
+    program("error_vs_time", "error_vs_time", Cost::Quick),
+    program("solvers", "solvers", Cost::Quick),
+    program("solver_scaling", "solver_scaling", Cost::Heavy),
+    program("penalty", "penalty", Cost::Quick),
+    program("stability", "stability", Cost::Quick),
+    program("reliability", "reliability", Cost::Heavy),
 ];
 
 /// Where a chapter program writes, and the facts it collects on the way.
