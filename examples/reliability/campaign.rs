@@ -50,7 +50,7 @@ pub fn output_sets() -> [(&'static str, String); 3] {
 // ANCHOR_END: grid
 
 /// Extremes of other keys: (label, scene).
-fn extremes() -> Vec<(String, String)> {
+pub fn extremes() -> Vec<(String, String)> {
     let rect = SHAPES[0].1;
     let mut out = vec![
         (

@@ -15,6 +15,12 @@ type Set = BTreeMap<String, Vec<u8>>;
 /// The kills are spread over this many times a clean run, so that some
 /// land after the commit.
 pub const KILL_SPAN: f64 = 1.25;
+/// SIGINT and SIGTERM are each sent at this many moments of a run.
+pub const SIGNAL_MOMENTS: usize = 10;
+/// Rounds of two runs started together into one folder.
+pub const CONCURRENT_ROUNDS: usize = 30;
+/// The fixture: elements per direction and VTU subdivisions.
+pub const FIXTURE: (usize, usize) = (24, 12);
 
 /// Two scenes ("old" and "new", different titles) writing every output into
 /// one folder, and the two complete sets of files they write.
@@ -168,7 +174,7 @@ impl Faults {
 
 /// Injects every fault into runs of the fixture.
 pub fn run(work: &Path) -> Result<Faults> {
-    let f = Fixture::new(work, "faults", 24, 12);
+    let f = Fixture::new(work, "faults", FIXTURE.0, FIXTURE.1);
     let mut out = Faults {
         table: Table::new(vec![
             Column::plain("fault", "fault"),
@@ -263,20 +269,20 @@ pub fn run(work: &Path) -> Result<Faults> {
     // SIGINT and SIGTERM.
     for (sig, name) in [(libc::SIGINT, "SIGINT"), (libc::SIGTERM, "SIGTERM")] {
         let mut trials = Vec::new();
-        for k in 1..=10 {
+        for k in 1..=SIGNAL_MOMENTS {
             trials.push(f.run_new(Launch {
-                signal: Some((sig, f.seconds * k as f64 / 10.0)),
+                signal: Some((sig, f.seconds * k as f64 / SIGNAL_MOMENTS as f64)),
                 ..Launch::default()
             }));
             f.reset();
         }
-        out.row(&format!("{name} at 10 moments"), &trials, "—")?;
+        out.row(&format!("{name} at {SIGNAL_MOMENTS} moments"), &trials, "—")?;
     }
 
     // Two different scenes into one folder at once.
     let small = Fixture::new(work, "concurrent", 8, 2);
     let mut trials = Vec::new();
-    for _ in 0..30 {
+    for _ in 0..CONCURRENT_ROUNDS {
         let a = std::thread::spawn({
             let dir = small.dir.clone();
             move || {

@@ -282,7 +282,14 @@ fn ill_posed(work: &Path, chapter: &mut Chapter) -> Result<usize> {
     let rollers = "[[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
     let upper = "[[support]]\nbody = \"upper\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
     let quadrature = "elements = [2, 2] }\nquadrature = 1";
-    let cases: [(&str, String); 7] = [
+    // a quarter annulus bearing on a concentric one: the contact normals are
+    // radial, so nothing resists a rotation about the common centre
+    let annuli = include_str!("../../tests/fixtures/rotating_annuli.toml");
+    let cases: [(&str, String); 8] = [
+        (
+            "a quarter annulus in a concentric one, the outer held",
+            annuli.to_string(),
+        ),
         (
             "`minimal.toml` without its support",
             minimal.replace(rollers, ""),
@@ -377,6 +384,9 @@ fn disk(gap: f64) -> String {
     )
 }
 
+/// Initial gaps, in units of the body's size.
+const GAP_RATIOS: [f64; 6] = [0.0, 0.002, 0.02, 0.2, 1.0, 2.0];
+
 /// Solves every lifted body with the default BFGS, Newton and the paper's
 /// BFGS; returns the largest iteration count of the first two and the
 /// largest relative force error of any converged run.
@@ -405,7 +415,7 @@ fn gaps(chapter: &mut Chapter) -> Result<(usize, f64)> {
     ]);
     let (mut most, mut worst) = (0, 0.0f64);
     for (name, size, scene, load) in bodies {
-        for ratio in [0.0, 0.002, 0.02, 0.2, 1.0, 2.0] {
+        for ratio in GAP_RATIOS {
             let problem = Scene::from_toml_str(&scene(ratio * size))?.build()?;
             let mut row: Vec<Cell> = vec![name.into(), ratio.into()];
             let mut error = 0.0f64;
@@ -561,6 +571,8 @@ fn main() -> Result<()> {
     f.count("campaign_refinements", campaign::refinements().len())?;
     f.count("campaign_output_sets", campaign::output_sets().len())?;
     f.count("campaign_extremes", tally.extremes)?;
+    let extremes: Vec<String> = campaign::extremes().into_iter().map(|(l, _)| l).collect();
+    f.text("campaign_extreme_list", extremes.join("; "))?;
     f.count("campaign_scenes", tally.scenes)?;
     f.count("campaign_launches", tally.launches)?;
     f.count("campaign_unclean", tally.unclean.len())?;
@@ -572,6 +584,11 @@ fn main() -> Result<()> {
     )?;
     f.count("ill_posed_refused", refused)?;
     f.count("gap_max_iterations", gap_iterations)?;
+    f.number(
+        "gap_ratio_max",
+        GAP_RATIOS[GAP_RATIOS.len() - 1],
+        Format::Plain,
+    )?;
     f.number("gap_force_error", gap_force.max(1e-16), Format::Pow10(0))?;
     f.count("fuzz_inputs", fuzz as usize)?;
     f.count("fuzz_families", families)?;
@@ -580,6 +597,9 @@ fn main() -> Result<()> {
     f.count("kills", faults.kills)?;
     f.count("kills_cleaned", faults.kills_cleaned)?;
     f.number("kill_span", faults::KILL_SPAN, Format::Fixed(2))?;
+    f.count("signal_moments", faults::SIGNAL_MOMENTS)?;
+    f.count("concurrent_rounds", faults::CONCURRENT_ROUNDS)?;
+    f.text("fixture_mesh", mesh([faults::FIXTURE.0; 2]))?;
     f.timed_number("fixture_seconds", faults.fixture_seconds, Format::Fixed(2))?;
     f.count("fixture_files", faults.fixture_files.len())?;
     f.text("fixture_listing", faults::describe(&faults.fixture_files))?;

@@ -11,7 +11,8 @@
 //! binary must be built first: `cargo run --example` builds only examples).
 
 use iga_contact::report::chapter::{cli_binary, Chapter, Cost, PROGRAMS};
-use iga_contact::report::table::{Column, Table};
+use iga_contact::report::table::{Column, Format, Table};
+use iga_contact::resources::{ADDRESS_SPACE_SHARE, PHYSICAL_SHARE};
 use iga_contact::scene::{self, OutputSpec, Scene};
 use iga_contact::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -348,5 +349,14 @@ fn main() -> Result<()> {
         ])?;
     }
     chapter.table("programs", &table)?;
+
+    // The default memory budget, which `--max-memory` overrides.
+    let f = chapter.facts();
+    f.number("physical_share", PHYSICAL_SHARE, Format::Percent(0))?;
+    f.number(
+        "address_space_share",
+        ADDRESS_SPACE_SHARE,
+        Format::Percent(0),
+    )?;
     chapter.finish()
 }
