@@ -156,6 +156,9 @@ fn paper_runs() -> [(
 }
 // ANCHOR_END: paper_runs
 
+/// The runs of [`paper_runs`] whose iteration history the chapters show.
+const HISTORIES: [&str; 2] = ["paper", "newton_tied"];
+
 /// The iteration of the first row of `s` that carries `event`, or 0.
 fn first(s: &Solution, event: Event) -> usize {
     s.history
@@ -226,10 +229,10 @@ fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
         }
         let active: Vec<String> = h.rows.iter().map(|r| r.active_points.to_string()).collect();
         f.text(&format!("{key}_active"), active.join(", "))?;
-        chapter.csv(
-            &format!("history_{key}"),
-            &history_table(h, Unit::None, Unit::None)?,
-        )?;
+        if HISTORIES.contains(&key) {
+            let t = history_table(h, Unit::NewtonPerMetre, Unit::Metre)?;
+            chapter.table(&format!("history_{key}"), &t)?;
+        }
     }
     chapter.table("shipped", &table)
 }
