@@ -9,14 +9,17 @@
 //! over every free DOF, which reproduces the paper's iteration history
 //! (its start u = 0 is not interior-relaxed, so its first pair differs).
 //!
-//! Convergence (both solvers): ‖R(u_k)‖ ≤ max(`rtol`·‖R(u_0)‖, floor) and
-//! ‖Δu_k‖ ≤ `utol`·‖u_k‖, where the floor is [`ROUND_OFF`] times the
-//! round-off of evaluating R at u_k, ε ‖ |f| + |A||u| + |contact terms| ‖.
-//! A residual at the floor is converged whatever the update: floating
-//! point cannot resolve a smaller one. The iteration count is bounded by
-//! `max_iter`; when it runs out, or the residual stops being finite, the
-//! solver returns [`crate::Error::NotConverged`] carrying the whole
-//! [`history::History`].
+//! Convergence (both solvers): ‖R(u_k)‖ ≤ max(`rtol`·‖R(u_0)‖, cancelling
+//! floor) and ‖Δu_k‖ ≤ `utol`·‖u_k‖, or ‖R(u_k)‖ at the typical floor
+//! whatever the update ([`Floor`]: [`ROUND_OFF`] times the round-off of
+//! evaluating R at u_k, ε ‖ |f| + |A||u| + |contact terms| ‖, the contact
+//! terms counted as computed or before they cancel). A damped iteration
+//! that stops making progress has stalled; by default the solve then
+//! starts once more from the tied kernel ([`OnStall`]). The iteration
+//! count is bounded by `max_iter`; when it runs out, the residual stops
+//! being finite or the last start stalls, the solver returns
+//! [`crate::Error::NotConverged`] carrying the whole [`history::History`]
+//! and a diagnosis. A converged [`Solution`] lists its [`Warning`]s.
 
 pub mod bfgs;
 pub(crate) mod guard;
