@@ -187,12 +187,7 @@ fn tables(rows: &[Row]) -> iga_contact::Result<(Table, Table)> {
             Unit::Second,
             Format::Fixed(3),
         ),
-        Column::new(
-            "route_b_estimate",
-            "route B",
-            Unit::Second,
-            Format::Fixed(1),
-        ),
+        Column::new("route_b_estimate", "B", Unit::Second, Format::Fixed(1)),
     ]);
     for r in rows {
         scaling.push(vec![
