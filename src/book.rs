@@ -38,5 +38,6 @@ chapters! {
     solvers => "solvers.md",
     stability => "stability.md",
     scenes => "scenes.md",
+    reliability => "reliability.md",
 }
 // ANCHOR_END: chapters

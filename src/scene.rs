@@ -327,9 +327,10 @@ impl fmt::Display for RunReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "converged in {} iterations ({} correction{}), {} DOFs, {}/{} contact points active, \
+            "converged in {} iteration{} ({} correction{}), {} DOFs, {}/{} contact points active, \
              contact force ({:.6e}, {:.6e}), {:.2} s",
             self.iterations,
+            if self.iterations == 1 { "" } else { "s" },
             self.corrections,
             if self.corrections == 1 { "" } else { "s" },
             self.dofs,
@@ -1153,9 +1154,10 @@ impl fmt::Display for CheckReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "ok ({} bodies, {} free DOFs, {} contact points; a run needs about {} of memory, \
+            "ok ({} bod{}, {} free DOFs, {} contact points; a run needs about {} of memory, \
              {} matrix non-zeros)",
             self.bodies,
+            if self.bodies == 1 { "y" } else { "ies" },
             self.dofs,
             self.contact_points,
             human_bytes(self.estimate.peak_bytes()),

@@ -1107,37 +1107,7 @@ fn the_upper_taylor_block_without_its_side_support_is_named() {
 fn a_body_free_to_rotate_about_a_curved_contact_surface_is_rejected() {
     // A quarter annulus bearing on a concentric one: the contact normals
     // are radial, so rotation about the common centre is never resisted.
-    let text = r#"
-[[body]]
-name = "outer"
-geometry = { quarter_annulus = { inner_radius = 1.0, outer_radius = 1.5 } }
-refine = { degree = 2, elements = [4, 2] }
-material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
-
-[[body]]
-name = "inner"
-geometry = { quarter_annulus = { inner_radius = 0.5, outer_radius = 1.0 } }
-refine = { degree = 2, elements = [3, 2] }
-material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
-
-[[support]]
-body = "outer"
-side = "eta_max"
-component = "x"
-
-[[support]]
-body = "outer"
-side = "eta_max"
-component = "y"
-
-[[load]]
-body_force = { body = "inner", force = [1.0, 1.0] }
-
-[[contact]]
-slave = "inner"
-slave_side = "eta_max"
-master = { body = "outer", side = "eta_min" }
-"#;
+    let text = include_str!("fixtures/rotating_annuli.toml");
     let msg = rejects(text, "body[1]", "\"inner\"");
     assert!(msg.contains("rotate about (0, 0)"), "{msg}");
     // `check` finds it too, without assembling anything.

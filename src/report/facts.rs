@@ -94,7 +94,15 @@ impl Facts {
         Ok(())
     }
 
-    /// The keys recorded by [`Facts::timed_number`].
+    /// Records a text that changes from run to run (a date, the machine's
+    /// load), left out of checks against a fresh run like a timed number.
+    pub fn timed_text(&mut self, key: &str, text: impl Into<String>) -> Result<()> {
+        self.text(key, text)?;
+        self.timed.insert(key.to_string());
+        Ok(())
+    }
+
+    /// The keys recorded by [`Facts::timed_number`] and [`Facts::timed_text`].
     pub fn timed_keys(&self) -> impl Iterator<Item = &str> {
         self.timed.iter().map(String::as_str)
     }
