@@ -10,8 +10,8 @@ use super::history::{Event, History};
 use super::kernel::Kernels;
 use super::system::System;
 use super::{
-    dot, line_search, norm, settle, Attempt, CorrectOn, Damping, Fallback, SolverOptions, Start,
-    Tracker,
+    dot, end_iteration, line_search, norm, Attempt, CorrectOn, Damping, Fallback, Iterate,
+    SolverOptions, Start, Tracker,
 };
 use crate::error::Result;
 use crate::problem::Problem;
@@ -176,26 +176,15 @@ pub(crate) fn solve(
             update.clear();
         }
         r = r_new;
-        let max_u = kernels.sys.max_displacement(&u);
-        let row_events = std::mem::take(&mut events);
-        let status = tracker.record(
-            &u,
-            &du,
-            &r,
-            step.floor,
-            state.active,
-            max_u,
-            row_events,
+        let it = Iterate {
+            du: &du,
+            r: &r,
+            floor: step.floor,
+            active: state.active,
+            events: std::mem::take(&mut events),
             damped,
-        );
-        if let Some(end) = settle(
-            status,
-            &mut u,
-            &mut tracker,
-            &*kernels.sys,
-            problem,
-            kernels.factorisations,
-        ) {
+        };
+        if let Some(end) = end_iteration(&mut tracker, &kernels, problem, &mut u, it) {
             return end;
         }
     }

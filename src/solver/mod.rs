@@ -370,6 +370,40 @@ pub(crate) fn settle(
     }))
 }
 
+/// What an iteration of either solver ends with, for [`end_iteration`].
+pub(crate) struct Iterate<'a> {
+    pub du: &'a [f64],
+    pub r: &'a [f64],
+    pub floor: Floor,
+    pub active: usize,
+    pub events: Vec<Event>,
+    /// The step went through the line search.
+    pub damped: bool,
+}
+
+/// The end of an iteration of either solver: records its row at `u` and
+/// [`settle`]s the status (`None`: go on).
+pub(crate) fn end_iteration(
+    tracker: &mut Tracker,
+    kernels: &kernel::Kernels,
+    problem: &Problem,
+    u: &mut Vec<f64>,
+    it: Iterate,
+) -> Option<Result<Attempt>> {
+    let max_u = kernels.sys.max_displacement(u);
+    let status = tracker.record(
+        u, it.du, it.r, it.floor, it.active, max_u, it.events, it.damped,
+    );
+    settle(
+        status,
+        u,
+        tracker,
+        &*kernels.sys,
+        problem,
+        kernels.factorisations,
+    )
+}
+
 /// Runs the solver chosen in `opts`.
 pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
     opts.validate("solver")?;

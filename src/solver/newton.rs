@@ -19,7 +19,10 @@
 use super::history::{Event, History};
 use super::kernel::Kernels;
 use super::system::System;
-use super::{line_search, norm, settle, Attempt, Damping, Fallback, SolverOptions, Start, Tracker};
+use super::{
+    end_iteration, line_search, norm, Attempt, Damping, Fallback, Iterate, SolverOptions, Start,
+    Tracker,
+};
 use crate::error::Result;
 use crate::problem::Problem;
 
@@ -81,25 +84,15 @@ pub(crate) fn solve(
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
         r = step.r;
-        let max_u = kernels.sys.max_displacement(&u);
-        let status = tracker.record(
-            &u,
-            &du,
-            &r,
-            step.floor,
-            step.state.active,
-            max_u,
+        let it = Iterate {
+            du: &du,
+            r: &r,
+            floor: step.floor,
+            active: step.state.active,
             events,
             damped,
-        );
-        if let Some(end) = settle(
-            status,
-            &mut u,
-            &mut tracker,
-            &*kernels.sys,
-            problem,
-            kernels.factorisations,
-        ) {
+        };
+        if let Some(end) = end_iteration(&mut tracker, &kernels, problem, &mut u, it) {
             return end;
         }
     }
