@@ -84,7 +84,7 @@ const fn program(example: &'static str, chapter: &'static str, cost: Cost) -> Pr
 }
 
 /// Every chapter program, in the order of the book.
-pub const PROGRAMS: [Program; 13] = [
+pub const PROGRAMS: &[Program] = &[
     program("formulation", "formulation", Cost::Quick),
     program("lame", "lame", Cost::Quick),
     program("taylor", "taylor", Cost::Quick),
