@@ -495,7 +495,7 @@ pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStabilit
     for cp in &problem.points {
         let s = &mut out[cp.pair];
         s.points += 1;
-        if cp.gamma < crate::contact::penalty::stability_bound(cp.trace_constant, cp.theta) {
+        if cp.below_stability_bound() {
             s.below += 1;
             if cp.p(full) <= 0.0 {
                 s.active_below += 1;

@@ -318,6 +318,9 @@ pub struct RunReport {
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
+    /// What the solution may not be ([`solver::Warning`]): a converged
+    /// run is reported with them, never silently.
+    pub warnings: Vec<solver::Warning>,
 }
 
 impl fmt::Display for RunReport {
@@ -338,9 +341,13 @@ impl fmt::Display for RunReport {
             self.seconds
         )?;
         match self.files.len() {
-            0 => write!(f, "; no outputs requested"),
-            n => write!(f, "; wrote {n} files"),
+            0 => write!(f, "; no outputs requested")?,
+            n => write!(f, "; wrote {n} files")?,
         }
+        for w in &self.warnings {
+            write!(f, "; warning: {w}")?;
+        }
+        Ok(())
     }
 }
 
@@ -1528,6 +1535,7 @@ impl Scene {
             applied_force,
             files,
             seconds: start.elapsed().as_secs_f64(),
+            warnings: solution.warnings.clone(),
         })
     }
 

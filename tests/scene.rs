@@ -345,6 +345,35 @@ fn a_scene_without_outputs_writes_nothing() {
     );
 }
 
+/// A converged run whose answer may not be the wanted one says so on its
+/// report line (the atlas's case: Hertz 8×8, θ = 0, penalty factor 10⁻³,
+/// where the solver converges to a p₀ far off the reference).
+#[test]
+fn a_run_below_the_stability_bound_reports_its_warning() {
+    let dir = tmp("warned");
+    let mut scene = Scene::shipped("hertz.toml").unwrap();
+    scene.nitsche_mut().for_each(|n| n.penalty_factor = 1e-3);
+    scene.solver = SolverOptions::default();
+    scene.output = Default::default();
+    let report = scene.run(&dir).unwrap();
+    assert!(matches!(
+        report.warnings.as_slice(),
+        [solver::Warning::PenaltyBelowBound { pair: 0, .. }]
+    ));
+    let line = report.to_string();
+    assert!(
+        !line.contains('\n')
+            && line.contains("warning: contact[0]")
+            && line.contains("stability bound"),
+        "{line}"
+    );
+    // at the empirical penalty the same run carries no warning
+    let mut fine = Scene::shipped("hertz.toml").unwrap();
+    fine.solver = SolverOptions::default();
+    fine.output = Default::default();
+    assert!(fine.run(&dir).unwrap().warnings.is_empty());
+}
+
 #[test]
 fn a_scene_asking_only_for_iterations_writes_only_that() {
     let dir = tmp("only-iterations");
