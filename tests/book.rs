@@ -191,3 +191,170 @@ fn every_test_a_chapter_names_exists() {
     }
     assert!(named > 10, "only {named} tests named");
 }
+
+/// The prose of a chapter with code, maths, includes and link targets
+/// removed: what a reader sees as typed text.
+fn prose(text: &str) -> String {
+    let mut out = String::new();
+    let mut in_fence = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            in_fence = !in_fence;
+            continue;
+        }
+        if !in_fence {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    // Cut spans between delimiters, longest delimiters first.
+    for (open, close) in [
+        ("{{#include", "}}"),
+        ("<!--", "-->"),
+        ("$$", "$$"),
+        ("$", "$"),
+        ("`", "`"),
+        ("](", ")"),
+    ] {
+        let mut kept = String::new();
+        let mut rest = out.as_str();
+        while let Some(k) = rest.find(open) {
+            kept.push_str(&rest[..k]);
+            let after = &rest[k + open.len()..];
+            match after.find(close) {
+                Some(e) => {
+                    kept.push(' ');
+                    rest = &after[e + close.len()..];
+                }
+                None => {
+                    rest = after;
+                }
+            }
+        }
+        kept.push_str(rest);
+        out = kept;
+    }
+    out
+}
+
+/// Numbers in `prose` that look like measured results: a decimal number, or
+/// a number followed by a unit or a percent sign.
+fn typed_results(prose: &str) -> Vec<String> {
+    const UNITS: [&str; 17] = [
+        "%",
+        "mm",
+        "MPa",
+        "GPa",
+        "Pa",
+        "ms",
+        "s",
+        "GB",
+        "MB",
+        "N/m",
+        "N",
+        "iterations",
+        "iteration",
+        "factorisations",
+        "corrections",
+        "times faster",
+        "times slower",
+    ];
+    let chars: Vec<char> = prose.chars().collect();
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let starts = chars[i].is_ascii_digit()
+            && (i == 0 || !(chars[i - 1].is_alphanumeric() || chars[i - 1] == '.'));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
+            j += 1;
+        }
+        let number: String = chars[i..j].iter().collect::<String>();
+        let number = number.trim_end_matches('.').to_string();
+        let mut k = j;
+        while k < chars.len() && chars[k] == ' ' {
+            k += 1;
+        }
+        let tail: String = chars[k..chars.len().min(k + 16)].iter().collect();
+        let unit = UNITS.iter().find(|u| {
+            tail.starts_with(*u)
+                && !tail[u.len()..]
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_alphanumeric())
+        });
+        if number.contains('.') || unit.is_some() {
+            found.push(format!(
+                "{number}{}",
+                unit.map_or(String::new(), |u| format!(" {u}"))
+            ));
+        }
+        i = j;
+    }
+    found
+}
+
+/// Numbers the prose may type: parameters of a set-up, targets and test
+/// bounds, and values quoted from the paper. Everything else a chapter says
+/// about a result is included from its generated data.
+const TYPED_ON_PURPOSE: &[(&str, &str, &str)] = &[
+    ("correction.md", "8 iterations", "the paper's rule, quoted"),
+    (
+        "elasticity.md",
+        "0.1",
+        "the convergence test's bound on the measured rates",
+    ),
+    ("error_vs_time.md", "5 %", "an accuracy target"),
+    ("error_vs_time.md", "1 %", "an accuracy target"),
+    ("error_vs_time.md", "0.1 %", "an accuracy target"),
+    ("gap.md", "15 %", "how far the sketch lifts the arc"),
+    ("hertz.md", "3 %", "the doc-test's tolerance against Hertz"),
+    ("hertz.md", "4 %", "the doc-test's tolerance against Hertz"),
+    ("nurbs.md", "0.2", "the radius of the half disk"),
+    ("nurbs.md", "0.5", "a weight of the example basis"),
+    ("penalty.md", "0.1", "a penalty factor"),
+    ("stability.md", "0.3", "a Poisson ratio of the atlas"),
+    (
+        "stability.md",
+        "50 %",
+        "the doc-test's bound on a wrong answer",
+    ),
+    ("stability.md", "0.49", "a Poisson ratio of the atlas"),
+    ("stability.md", "0.499", "a Poisson ratio of the atlas"),
+    ("stability.md", "0.4999", "a Poisson ratio of the atlas"),
+    ("taylor.md", "0.1", "the paper's printed displacement"),
+    ("taylor.md", "100 Pa", "the paper's printed stress"),
+];
+
+#[test]
+fn the_prose_types_no_measured_number() {
+    let mut offenders = Vec::new();
+    for entry in std::fs::read_dir(book_src()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "md") {
+            continue;
+        }
+        let chapter = path.file_name().unwrap().to_string_lossy().into_owned();
+        let text = std::fs::read_to_string(&path).unwrap();
+        for token in typed_results(&prose(&text)) {
+            let allowed = TYPED_ON_PURPOSE
+                .iter()
+                .any(|(c, t, _)| *c == chapter && *t == token);
+            if !allowed {
+                offenders.push(format!("{chapter}: {token}"));
+            }
+        }
+    }
+    offenders.sort();
+    offenders.dedup();
+    assert!(
+        offenders.is_empty(),
+        "numbers typed in the prose (include them from generated data, or list them in \
+         TYPED_ON_PURPOSE with the reason):\n{}",
+        offenders.join("\n")
+    );
+}
