@@ -10,7 +10,9 @@
 //    page in the book's output (`api-url`), and so does inline code holding a
 //    full path, `iga_contact::solver::bfgs::solve`. [`solve`](api:) takes the
 //    path from the link text. A path that rustdoc does not know fails the build.
-//    IGA_BOOK_REPORT_UNLINKED=1 lists inline code naming an item without a link.
+//    Other inline code that names exactly one item (`Problem::kernel`,
+//    `solve()`) links to it too. IGA_BOOK_REPORT_UNLINKED=1 lists inline code
+//    left unlinked because its name is ambiguous.
 //
 // Fenced code, inline code and HTML comments are never changed (other than
 // wrapping a full-path code span in a link).
@@ -78,8 +80,8 @@ function main() {
   const apiIndex = () => (api ??= new ApiIndex(docDir, crate));
 
   const errors = [];
-  // IGA_BOOK_REPORT_UNLINKED=1 lists inline code that names an API item but
-  // is not linked yet (a report, not an error).
+  // IGA_BOOK_REPORT_UNLINKED=1 lists inline code whose name fits several API
+  // items and so stays unlinked (a report, not an error).
   const reportUnlinked = process.env.IGA_BOOK_REPORT_UNLINKED === "1";
   const unlinked = [];
   let links = 0;
@@ -139,17 +141,24 @@ function main() {
           return link(text, target === "" ? rustPathOf(text) : target, offset);
         },
         codeSpan(raw, inner, offset, before) {
+          if (before === "[") return raw; // the text of a link already
           const m = FULL_PATH.exec(inner);
-          if (m && before !== "[") return link(raw, m[1], offset);
-          if (reportUnlinked && before !== "[" && NAME_LIKE.test(inner)) {
-            try {
-              apiIndex().resolve(inner.replace(/\(.*\)$/, "()"));
-              unlinked.push(`${where}:${lineOf(src, offset)}: ${raw}`);
-            } catch {
-              // not an item, or ambiguous without its module path
+          if (m) return link(raw, m[1], offset);
+          if (!NAME_LIKE.test(inner)) return raw;
+          // Inline code that names exactly one item links to its page, so a
+          // name in the prose is always one click from its documentation
+          // without the author writing the link.
+          let file;
+          try {
+            file = apiIndex().resolve(rustPathOf(inner));
+          } catch (e) {
+            if (reportUnlinked && /names several items/.test(e.message)) {
+              unlinked.push(`${where}:${lineOf(src, offset)}: ${raw} (${e.message})`);
             }
+            return raw; // not an item (a scene key, a variable), or ambiguous
           }
-          return raw;
+          links++;
+          return `[${raw}](${root}${apiUrl}/${crate}/${file})`;
         },
       });
     } catch (e) {
@@ -166,7 +175,7 @@ function main() {
   if (reportUnlinked) {
     for (const u of unlinked) console.error(`[iga] unlinked: ${u}`);
   }
-  const report = reportUnlinked ? `, ${unlinked.length} unlinked code names of API items` : "";
+  const report = reportUnlinked ? `, ${unlinked.length} code names left unlinked as ambiguous` : "";
   console.error(`[iga] ${formulas} formulas rendered, ${links} API links resolved${report}`);
   process.stdout.write(JSON.stringify(book));
 }

@@ -140,3 +140,14 @@ test("the preprocessor fails on bad maths and unknown api names, naming file and
   assert.match(r.stderr, /part\/c\.md:2: KaTeX: /);
   assert.match(r.stderr, /part\/c\.md:2: api link: `nope` is not an item/);
 });
+
+test("inline code naming exactly one item links to it; other code stays code", () => {
+  const r = runPreprocessor("`Mesh::refine(2)`, `solve()`, `Options`, `tol = 1`, `nope`, [`Mesh`](api:).\n", fakeDocs());
+  assert.equal(r.status, 0, r.stderr);
+  assert.equal(
+    JSON.parse(r.stdout).items[0].Chapter.content,
+    "[`Mesh::refine(2)`](../api/demo/other/struct.Mesh.html#method.refine), " +
+      "[`solve()`](../api/demo/solver/fn.solve.html), `Options`, `tol = 1`, `nope`, " +
+      "[`Mesh`](../api/demo/other/struct.Mesh.html).\n",
+  );
+});
