@@ -340,7 +340,13 @@ fn main() -> Result<()> {
         let key = format!("p{p}_{n}");
         let hertz = [exact.p0, exact.half_width];
         f.contact_errors(&key, [p0, a], "hertz", hertz, Format::SignedPercent(2))?;
-        f.contact_errors(&key, [p0, a], "reference", [rp0, ra], Format::SignedPercent(2))?;
+        f.contact_errors(
+            &key,
+            [p0, a],
+            "reference",
+            [rp0, ra],
+            Format::SignedPercent(2),
+        )?;
     }
     let spacing = default
         .problem
