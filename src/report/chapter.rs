@@ -43,7 +43,7 @@ const fn program(example: &'static str, chapter: &'static str, cost: Cost) -> Pr
 }
 
 /// Every chapter program, in the order of the book.
-pub const PROGRAMS: [Program; 12] = [
+pub const PROGRAMS: [Program; 13] = [
     program("formulation", "formulation", Cost::Quick),
     program("lame", "lame", Cost::Quick),
     program("taylor", "taylor", Cost::Quick),
@@ -54,6 +54,7 @@ pub const PROGRAMS: [Program; 12] = [
     program("solvers", "solvers", Cost::Quick),
     program("solver_scaling", "solver_scaling", Cost::Heavy),
     program("penalty", "penalty", Cost::Quick),
+    program("penalty_contrast", "penalty_contrast", Cost::Heavy),
     program("stability", "stability", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),
 ];
