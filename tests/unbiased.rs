@@ -1,10 +1,25 @@
 //! The two halves of the unbiased form on curved contact (the disk on the
 //! block): each half's jump ⟦u_n⟧ is exact for the displacement it sees,
-//! so what the chapter "The penalty, measured" reports about the halves
-//! disagreeing is the linearised gap, not the kinematics.
+//! and both halves measure one gap function, so that their penalties do
+//! not pull against each other (chapter "The penalty, measured").
 
+use iga_contact::contact::projection::closest_point;
 use iga_contact::contact::{Role, Sides};
+use iga_contact::nurbs::Side;
+use iga_contact::problem::Problem;
 use iga_contact::scene::{RefineSpec, Scene};
+
+fn disk_on_block(n: usize) -> Problem {
+    Scene::shipped("disk_on_block.toml")
+        .unwrap()
+        .refined("disk", RefineSpec::iga(2, [n, n]))
+        .unwrap()
+        .refined("block", RefineSpec::iga(2, [2 * n, n]))
+        .unwrap()
+        .with_nitsche(|n| n.sides = Sides::Unbiased)
+        .build()
+        .unwrap()
+}
 
 /// A displacement field linear in the coordinates is reproduced exactly by
 /// NURBS (Σ R_a x_a = x), so the jump of every contact point, in both
@@ -12,15 +27,7 @@ use iga_contact::scene::{RefineSpec, Scene};
 /// on the other body, dotted with the point's normal.
 #[test]
 fn both_halves_measure_the_jump_of_a_linear_field_exactly() {
-    let problem = Scene::shipped("disk_on_block.toml")
-        .unwrap()
-        .refined("disk", RefineSpec::iga(2, [8, 8]))
-        .unwrap()
-        .refined("block", RefineSpec::iga(2, [16, 8]))
-        .unwrap()
-        .with_nitsche(|n| n.sides = Sides::Unbiased)
-        .build()
-        .unwrap();
+    let problem = disk_on_block(8);
     // the disk moves by u(x) = (0.3 y, 0.7 x + 0.2 y), the block stays
     let field = |x: [f64; 2]| [0.3 * x[1], 0.7 * x[0] + 0.2 * x[1]];
     let mut u = vec![0.0; problem.map.n_total()];
@@ -56,4 +63,33 @@ fn both_halves_measure_the_jump_of_a_linear_field_exactly() {
         );
     }
     assert!(halves[0] > 0 && halves[1] > 0, "{halves:?}");
+}
+
+/// The block's half pairs each block point with the disk point on its
+/// normal line, which is the disk point whose closest point on the block
+/// it is: the pairing of the disk's half, inverted. Both halves then see
+/// the same initial gap along the same normal.
+#[test]
+fn the_block_half_inverts_the_pairing_of_the_disk_half() {
+    let problem = disk_on_block(8);
+    let block_top = problem.bodies[1].space.patch.side_curve(Side::EtaMax);
+    let mut checked = 0;
+    for cp in problem.points.iter().filter(|cp| cp.role == Role::Master) {
+        let partner = [
+            cp.x[0] + cp.g0 * cp.normal[0],
+            cp.x[1] + cp.g0 * cp.normal[1],
+        ];
+        let back = closest_point(&block_top, partner).unwrap();
+        let miss = (back.point[0] - cp.x[0]).hypot(back.point[1] - cp.x[1]);
+        assert!(
+            miss < 1e-10,
+            "block point {:?}: back at {:?}",
+            cp.x,
+            back.point
+        );
+        // the disk's half would measure the same gap from the partner
+        assert!((back.distance - cp.g0.abs()).abs() < 1e-10);
+        checked += 1;
+    }
+    assert!(checked > 0);
 }

@@ -103,10 +103,9 @@ fn disk_share(problem: &Problem, full: &[f64]) -> f64 {
 
 /// How far apart the two halves of the unbiased form see the bodies: the
 /// mean gap g_n over the active points of the block's half minus that of
-/// the disk's half. Each half measures the gap along its own master's
-/// normal from its own reference pairing; with a curved master and a
-/// finite initial gap these linearised gaps differ, and the penalty of
-/// each half pulls towards its own.
+/// the disk's half. Near zero when both halves measure one gap function;
+/// two different linearised gaps would make the halves' penalties pull
+/// against each other.
 fn gap_mismatch(problem: &Problem, full: &[f64]) -> f64 {
     let mean = |role: Role| -> f64 {
         let active: Vec<f64> = problem
@@ -289,7 +288,7 @@ fn main() -> Result<()> {
             f.number(
                 &format!("unbiased_1e2_{n}"),
                 column(2, im)[1],
-                Format::SignedPercent(0),
+                Format::SignedPercent(2),
             )?;
             f.number(
                 &format!("unbiased_1_{n}"),
@@ -304,7 +303,7 @@ fn main() -> Result<()> {
             f.number(
                 &format!("unbiased_gap_mismatch_um_{n}"),
                 mismatch[im] * 1e6,
-                Format::Fixed(0),
+                Format::Fixed(1),
             )?;
         }
     }
