@@ -177,22 +177,17 @@ fn tables(rows: &[Row]) -> iga_contact::Result<(Table, Table)> {
     let mut phases = Table::new(vec![
         Column::plain("degree", "p"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
-        seconds("assembly", "assembly"),
+        seconds("assembly", "assemble"),
         seconds("one_cholesky", "Cholesky"),
-        seconds("condensation", "condensation"),
-        seconds("iterations_seconds", "iterations"),
+        seconds("condensation", "condense"),
+        seconds("iterations_seconds", "iterate"),
         Column::new(
             "back_substitution",
-            "recovery",
+            "recover",
             Unit::Second,
             Format::Fixed(3),
         ),
-        Column::new(
-            "route_b_estimate",
-            "route B",
-            Unit::Second,
-            Format::Fixed(1),
-        ),
+        Column::new("route_b_estimate", "B", Unit::Second, Format::Fixed(1)),
     ]);
     for r in rows {
         scaling.push(vec![

@@ -40,5 +40,6 @@ chapters! {
     stability => "stability.md",
     penalty_study => "penalty_study.md",
     scenes => "scenes.md",
+    reliability => "reliability.md",
 }
 // ANCHOR_END: chapters

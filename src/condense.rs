@@ -21,9 +21,9 @@
 //! by b ↦ (b̂_L ↦ (S₀ + C)⁻¹ b̂_L ↦ interior), with one dense factorisation
 //! of S₀ + C per kernel.
 //!
-//! Cost: one sparse Cholesky (the ordering constraint adds little fill,
-//! see `SOLVER_NOTES.md`), ℓ³/3 flops for S₀, ℓ² doubles for it; per
-//! vector, one sparse triangular pass each way.
+//! Cost: one sparse Cholesky (the layer-last order adds some fill), ℓ³/3
+//! flops for S₀, ℓ² doubles for it; per vector, one sparse triangular pass
+//! each way.
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};

@@ -522,7 +522,7 @@ pub fn stability_of(
         let s = &mut out[cp.pair];
         s.points += 1;
         let bound = crate::contact::penalty::stability_bound(cp.trace_constant, cp.theta);
-        let below = cp.gamma < bound;
+        let below = cp.below_stability_bound();
         s.below += usize::from(below);
         if active(cp) {
             s.active += 1;

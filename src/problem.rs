@@ -3,7 +3,7 @@
 //! the free DOFs.
 
 use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load};
-use crate::contact::nitsche::{add_force, heaviside, local_matrix, Law};
+use crate::contact::nitsche::{add_force, add_force_size_at, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
@@ -342,9 +342,13 @@ impl Problem {
         (r, ContactState { active })
     }
 
-    /// The round-off of evaluating R at `u`: ε ‖ |f| + |K||u| + |g_c| ‖,
-    /// the sum of the magnitudes of every term of every component.
-    pub fn residual_floor(&self, u: &[f64]) -> f64 {
+    /// The round-off of evaluating R at `u`, as two norms of the
+    /// component-wise sums of the magnitudes of the terms of R, times ε:
+    /// `(typical, cancelling)`. Both count |f| and |K||u|; `typical` counts
+    /// each contact force as computed, |g_c|, and `cancelling` its terms
+    /// before they cancel ([`crate::contact::nitsche::add_force_size_at`]),
+    /// a bound that small penalties or large stresses make far larger.
+    pub fn residual_floor(&self, u: &[f64]) -> (f64, f64) {
         let full = self.map.expand(u);
         let mut size: Vec<f64> = self.rhs.iter().map(|v| v.abs()).collect();
         let s = self.k.symbolic();
@@ -354,18 +358,29 @@ impl Problem {
                 size[idx[k]] += (val[k] * u[j]).abs();
             }
         }
-        let mut g = Vec::new();
+        let mut wide = size.clone();
+        let (mut g, mut g_size) = (Vec::new(), Vec::new());
         for cp in &self.points {
             g.clear();
             g.resize(cp.dofs.len(), 0.0);
-            add_force(cp, &full, &mut g, Law::Contact);
+            g_size.clear();
+            g_size.resize(cp.dofs.len(), 0.0);
+            let p = add_force(cp, &full, &mut g, Law::Contact);
+            let (mut sigma_size, mut jump_size) = (0.0, 0.0);
+            for (k, &dof) in cp.dofs.iter().enumerate() {
+                sigma_size += (cp.sn[k] * full[dof]).abs();
+                jump_size += (cp.jn[k] * full[dof]).abs();
+            }
+            add_force_size_at(cp, sigma_size, jump_size, p, Law::Contact, &mut g_size);
             for (k, &dof) in cp.dofs.iter().enumerate() {
                 if let Some(i) = self.map.free(dof) {
                     size[i] += g[k].abs();
+                    wide[i] += g_size[k];
                 }
             }
         }
-        f64::EPSILON * size.iter().map(|x| x * x).sum::<f64>().sqrt()
+        let norm = |v: &[f64]| f64::EPSILON * v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        (norm(&size), norm(&wide))
     }
 
     /// Rigid-body modes (full-length vectors, one per mode) that the

@@ -297,7 +297,7 @@ impl Budget {
 }
 
 /// `MemTotal` from `/proc/meminfo`, in bytes.
-fn meminfo_total() -> Option<u64> {
+pub(crate) fn meminfo_total() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

@@ -321,15 +321,19 @@ pub struct RunReport {
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
+    /// What the solution may not be ([`solver::Warning`]): a converged
+    /// run is reported with them, never silently.
+    pub warnings: Vec<solver::Warning>,
 }
 
 impl fmt::Display for RunReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "converged in {} iterations ({} correction{}), {} DOFs, {}/{} contact points active, \
+            "converged in {} iteration{} ({} correction{}), {} DOFs, {}/{} contact points active, \
              contact force ({:.6e}, {:.6e}), {:.2} s",
             self.iterations,
+            if self.iterations == 1 { "" } else { "s" },
             self.corrections,
             if self.corrections == 1 { "" } else { "s" },
             self.dofs,
@@ -340,9 +344,13 @@ impl fmt::Display for RunReport {
             self.seconds
         )?;
         match self.files.len() {
-            0 => write!(f, "; no outputs requested"),
-            n => write!(f, "; wrote {n} files"),
+            0 => write!(f, "; no outputs requested")?,
+            n => write!(f, "; wrote {n} files")?,
         }
+        for w in &self.warnings {
+            write!(f, "; warning: {w}")?;
+        }
+        Ok(())
     }
 }
 
@@ -1261,9 +1269,10 @@ impl fmt::Display for CheckReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "ok ({} bodies, {} free DOFs, {} contact points; a run needs about {} of memory, \
+            "ok ({} bod{}, {} free DOFs, {} contact points; a run needs about {} of memory, \
              {} matrix non-zeros)",
             self.bodies,
+            if self.bodies == 1 { "y" } else { "ies" },
             self.dofs,
             self.contact_points,
             human_bytes(self.estimate.peak_bytes()),
@@ -1648,6 +1657,7 @@ impl Scene {
             penalty_warnings,
             files,
             seconds: start.elapsed().as_secs_f64(),
+            warnings: solution.warnings.clone(),
         })
     }
 

@@ -153,3 +153,41 @@ fn the_generated_data_is_what_the_programs_compute() {
         regenerates_identically(p.example, p.chapter);
     }
 }
+
+/// Every test a chapter names, as `tests/FILE.rs::name`, is a function of
+/// that file: a renamed or removed test cannot leave the book pointing at
+/// nothing.
+#[test]
+fn every_test_a_chapter_names_exists() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut named = 0;
+    for entry in std::fs::read_dir(book_src()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "md") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for (at, _) in text.match_indices("tests/") {
+            let rest = &text[at..];
+            let Some((file, after)) = rest.split_once(".rs::") else {
+                continue;
+            };
+            if file.contains(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '/')) {
+                continue; // not one reference: the `.rs::` belongs to a later one
+            }
+            let name: String = after
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            let source = std::fs::read_to_string(root.join(format!("{file}.rs")))
+                .unwrap_or_else(|e| panic!("{}: {file}.rs: {e}", path.display()));
+            assert!(
+                source.contains(&format!("fn {name}(")),
+                "{}: no test `{name}` in {file}.rs",
+                path.display()
+            );
+            named += 1;
+        }
+    }
+    assert!(named > 10, "only {named} tests named");
+}

@@ -345,6 +345,35 @@ fn a_scene_without_outputs_writes_nothing() {
     );
 }
 
+/// A converged run whose answer may not be the wanted one says so on its
+/// report line (the atlas's case: Hertz 8×8, θ = 0, penalty factor 10⁻³,
+/// where the solver converges to a p₀ far off the reference).
+#[test]
+fn a_run_below_the_stability_bound_reports_its_warning() {
+    let dir = tmp("warned");
+    let mut scene = Scene::shipped("hertz.toml").unwrap();
+    scene.nitsche_mut().for_each(|n| n.penalty_factor = 1e-3);
+    scene.solver = SolverOptions::default();
+    scene.output = Default::default();
+    let report = scene.run(&dir).unwrap();
+    assert!(matches!(
+        report.warnings.as_slice(),
+        [solver::Warning::PenaltyBelowBound { pair: 0, .. }]
+    ));
+    let line = report.to_string();
+    assert!(
+        !line.contains('\n')
+            && line.contains("warning: contact[0]")
+            && line.contains("stability bound"),
+        "{line}"
+    );
+    // at the empirical penalty the same run carries no warning
+    let mut fine = Scene::shipped("hertz.toml").unwrap();
+    fine.solver = SolverOptions::default();
+    fine.output = Default::default();
+    assert!(fine.run(&dir).unwrap().warnings.is_empty());
+}
+
 #[test]
 fn a_scene_asking_only_for_iterations_writes_only_that() {
     let dir = tmp("only-iterations");
@@ -1078,37 +1107,7 @@ fn the_upper_taylor_block_without_its_side_support_is_named() {
 fn a_body_free_to_rotate_about_a_curved_contact_surface_is_rejected() {
     // A quarter annulus bearing on a concentric one: the contact normals
     // are radial, so rotation about the common centre is never resisted.
-    let text = r#"
-[[body]]
-name = "outer"
-geometry = { quarter_annulus = { inner_radius = 1.0, outer_radius = 1.5 } }
-refine = { degree = 2, elements = [4, 2] }
-material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
-
-[[body]]
-name = "inner"
-geometry = { quarter_annulus = { inner_radius = 0.5, outer_radius = 1.0 } }
-refine = { degree = 2, elements = [3, 2] }
-material = { young = 1.0e6, poisson = 0.3, plane = "strain" }
-
-[[support]]
-body = "outer"
-side = "eta_max"
-component = "x"
-
-[[support]]
-body = "outer"
-side = "eta_max"
-component = "y"
-
-[[load]]
-body_force = { body = "inner", force = [1.0, 1.0] }
-
-[[contact]]
-slave = "inner"
-slave_side = "eta_max"
-master = { body = "outer", side = "eta_min" }
-"#;
+    let text = include_str!("fixtures/rotating_annuli.toml");
     let msg = rejects(text, "body[1]", "\"inner\"");
     assert!(msg.contains("rotate about (0, 0)"), "{msg}");
     // `check` finds it too, without assembling anything.

@@ -25,7 +25,7 @@ use iga_contact::report::history::history_table;
 use iga_contact::report::plot::{
     field_figure, geometry_figure, line_chart, Axes, LineKind, Polyline, Series, BLACK_INDEX,
 };
-use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit, CONTACT_ERRORS};
 use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::history::{Event, History};
@@ -338,24 +338,13 @@ fn main() -> Result<()> {
     f.count("failures", failures.len())?;
     for &(p, n, (p0, a, _)) in &rows {
         let key = format!("p{p}_{n}");
-        f.number(
-            &format!("{key}_p0_vs_hertz"),
-            relative(p0, exact.p0),
-            Format::SignedPercent(2),
-        )?;
-        f.number(
-            &format!("{key}_a_vs_hertz"),
-            relative(a, exact.half_width),
-            Format::SignedPercent(2),
-        )?;
-        f.number(
-            &format!("{key}_p0_vs_reference"),
-            relative(p0, rp0),
-            Format::SignedPercent(2),
-        )?;
-        f.number(
-            &format!("{key}_a_vs_reference"),
-            relative(a, ra),
+        let hertz = [exact.p0, exact.half_width];
+        f.contact_errors(&key, [p0, a], "hertz", hertz, Format::SignedPercent(2))?;
+        f.contact_errors(
+            &key,
+            [p0, a],
+            "reference",
+            [rp0, ra],
             Format::SignedPercent(2),
         )?;
     }
@@ -484,37 +473,15 @@ fn convergence_table(
     exact: &Hertz,
     (rp0, ra, _): (f64, f64, usize),
 ) -> Result<Table> {
-    let mut t = Table::new(vec![
+    let mut columns = vec![
         Column::plain("degree", "p"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
         Column::plain("dofs", "DOFs"),
         Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
         Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(3)),
-        Column::new(
-            "p0_error_hertz",
-            "p₀ vs Hertz",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-        Column::new(
-            "half_width_error_hertz",
-            "a vs Hertz",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-        Column::new(
-            "p0_error_reference",
-            "p₀ vs ref.",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-        Column::new(
-            "half_width_error_reference",
-            "a vs ref.",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-    ]);
+    ];
+    columns.extend(CONTACT_ERRORS);
+    let mut t = Table::new(columns);
     for &(p, n, (p0, a, dofs)) in rows {
         t.push(vec![
             p.into(),

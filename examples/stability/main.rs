@@ -19,7 +19,7 @@ use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::solver::history::{Event, History};
-use iga_contact::solver::{solve, Solution, SolverOptions};
+use iga_contact::solver::{solve, Solution, SolverOptions, Warning};
 
 // ANCHOR: metric
 /// What a case is measured against.
@@ -228,8 +228,47 @@ struct Row {
     status: &'static str,
     history: History,
     error: Option<f64>,
+    /// The measured p₀ (peak-pressure cases that converged) and its reference.
+    p0: Option<f64>,
+    reference: Option<f64>,
+    /// Active points at the solution, and how many of them have a penalty
+    /// below the stability bound.
+    active: Option<usize>,
+    below: usize,
+    /// γ g₀ of the only active point, when one point carries the contact:
+    /// the penalty bracket at the axis once the disk has sunk to it.
+    single_point_bracket: Option<f64>,
+    warnings: Vec<Warning>,
     error_kind: String,
     diagnosis: String,
+}
+
+impl Row {
+    fn restarted(&self) -> bool {
+        self.history.count(|e| *e == Event::Restart) > 0
+    }
+
+    /// The short note of the Markdown tables: a restart, and the warnings.
+    fn note(&self) -> String {
+        let mut parts = Vec::new();
+        if self.restarted() {
+            parts.push("restarted".to_string());
+        }
+        for w in &self.warnings {
+            parts.push(match w {
+                Warning::PenaltyBelowBound { below, active, .. } => {
+                    format!("γ < bound at {below}/{active}")
+                }
+                Warning::UnresolvedContact { active, .. } => {
+                    format!(
+                        "{active} active point{}",
+                        if *active == 1 { "" } else { "s" }
+                    )
+                }
+            });
+        }
+        parts.join("; ")
+    }
 }
 
 fn max_syy_error(p: &Problem, s: &Solution, exact: f64) -> Result<f64> {
@@ -256,6 +295,15 @@ fn run_case(case: &Case) -> Row {
         status: "failed",
         history: History::default(),
         error: None,
+        p0: None,
+        reference: match case.metric {
+            Metric::PeakPressure(r) => Some(r),
+            _ => None,
+        },
+        active: None,
+        below: 0,
+        single_point_bracket: None,
+        warnings: Vec::new(),
         error_kind: String::new(),
         diagnosis: String::new(),
     };
@@ -275,10 +323,22 @@ fn run_case(case: &Case) -> Row {
         }
     };
     row.history = s.history.clone();
-    let active = p.active_points(&s.u);
+    row.warnings = s.warnings.clone();
+    let active: Vec<_> = p.points.iter().filter(|cp| cp.p(&s.full) <= 0.0).collect();
+    row.active = Some(active.len());
+    row.below = active
+        .iter()
+        .filter(|cp| cp.below_stability_bound())
+        .count();
+    if let [only] = active.as_slice() {
+        row.single_point_bracket = Some(only.gamma * only.g0);
+    }
     let error = match case.metric {
-        Metric::PeakPressure(reference) => PressureProfile::dense(&p, &s.full)
-            .map(|prof| Some(relative(prof.measures(0).p0, reference).abs())),
+        Metric::PeakPressure(reference) => PressureProfile::dense(&p, &s.full).map(|prof| {
+            let p0 = prof.measures(0).p0;
+            row.p0 = Some(p0);
+            Some(relative(p0, reference).abs())
+        }),
         Metric::UniformStress(exact) => max_syy_error(&p, &s, exact).map(Some),
         Metric::NoContact => Ok(None),
     };
@@ -287,12 +347,12 @@ fn run_case(case: &Case) -> Row {
             row.error_kind = e.kind().into();
             row.diagnosis = e.to_string();
         }
-        Ok(_) if matches!(case.metric, Metric::NoContact) && active > 0 => {
+        Ok(_) if matches!(case.metric, Metric::NoContact) && !active.is_empty() => {
             row.error_kind = "unexpected_contact".into();
         }
         Ok(e) => {
             row.error = e;
-            row.status = if active == 0 {
+            row.status = if active.is_empty() {
                 "no_contact"
             } else {
                 "converged"
@@ -316,6 +376,46 @@ fn good_factors(rows: &[Row], theta: Theta, tol: f64) -> Vec<f64> {
 /// The accuracy criterion of the penalty ranges.
 const PENALTY_TOLERANCE: f64 = 0.05;
 
+/// A cell of a penalty × θ view: the error (in `format`) and the iteration
+/// count, `†` where active points have a penalty below the stability bound.
+fn penalty_cell(r: &Row, format: Format) -> String {
+    let its = r.history.len();
+    match (r.status, r.error) {
+        ("converged", Some(e)) => {
+            let mark = if r.below > 0 { " †" } else { "" };
+            format!("{} ({its}){mark}", format.render(e))
+        }
+        (status, _) => format!("{status} ({its})"),
+    }
+}
+
+/// The penalty × θ view of the cases whose name starts with `prefix`.
+fn penalty_view(rows: &[Row], prefix: &str, format: Format) -> Result<Table> {
+    let mut t = Table::new(vec![
+        Column::new(
+            "penalty_factor",
+            "penalty factor",
+            Unit::None,
+            Format::Sci(0),
+        ),
+        Column::plain("t1", "θ = 1"),
+        Column::plain("t0", "θ = 0"),
+        Column::plain("tm1", "θ = −1"),
+    ]);
+    for f in factors() {
+        let mut cells: Vec<Cell> = vec![f.into()];
+        for theta in Theta::ALL {
+            let r = rows
+                .iter()
+                .find(|r| r.case.starts_with(prefix) && r.theta == theta && r.penalty_factor == f)
+                .ok_or_else(|| Error::invalid("case", prefix, "missing from the atlas"))?;
+            cells.push(penalty_cell(r, format).into());
+        }
+        t.push(cells)?;
+    }
+    Ok(t)
+}
+
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("stability")?;
     let reference = {
@@ -337,24 +437,33 @@ fn main() -> Result<()> {
             row.status,
             row.error_kind
         );
+        for w in &row.warnings {
+            eprintln!("      warning: {w}");
+        }
         rows.push(row);
     }
 
     // ANCHOR: tables
+    let text = |s: &str| if s.is_empty() { Cell::Empty } else { s.into() };
     let mut atlas = Table::new(vec![
         Column::plain("case", "case"),
         Column::plain("theta", "θ"),
         Column::new("penalty_factor", "penalty", Unit::None, Format::Sci(0)),
         Column::plain("status", "status"),
         Column::plain("iterations", "its"),
-        Column::plain("corrections", "corr.").csv_only(),
-        Column::plain("skipped_updates", "skipped").csv_only(),
+        Column::plain("corrections", "corr."),
+        Column::plain("skipped_updates", "skipped"),
+        Column::plain("restarted", "restarted"),
+        Column::plain("active_points", "active"),
+        Column::plain("active_below_bound", "below bound"),
         Column::new("error_vs_reference", "error", Unit::None, Format::Sci(1)),
-        Column::plain("error_kind", "error kind").csv_only(),
-        Column::plain("diagnosis", "diagnosis").csv_only(),
+        Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
+        Column::plain("warnings", "warnings"),
+        Column::plain("error_kind", "error kind"),
+        Column::plain("diagnosis", "diagnosis"),
     ]);
     for r in &rows {
-        let text = |s: &str| if s.is_empty() { Cell::Empty } else { s.into() };
+        let warnings: Vec<String> = r.warnings.iter().map(|w| w.to_string()).collect();
         atlas.push(vec![
             r.case.clone().into(),
             r.theta.value().into(),
@@ -363,12 +472,43 @@ fn main() -> Result<()> {
             r.history.len().into(),
             r.history.corrections().into(),
             r.history.skipped_updates().into(),
+            (if r.restarted() { "yes" } else { "no" }).into(),
+            r.active.into(),
+            r.below.into(),
             r.error.into(),
+            r.p0.into(),
+            text(&warnings.join("; ")),
             text(&r.error_kind),
             text(&r.diagnosis),
         ])?;
     }
-    chapter.table("atlas", &atlas)?;
+    chapter.csv("atlas", &atlas)?;
+
+    // the Markdown views of the atlas: penalty × θ for each problem, and
+    // the other axes case by case
+    let hertz_view = penalty_view(&rows, "hertz_8x8_penalty", Format::Percent(1))?;
+    chapter.text("penalty_hertz.md", &hertz_view.to_markdown())?;
+    let taylor_view = penalty_view(&rows, "taylor_penalty", Format::Sci(0))?;
+    chapter.text("penalty_taylor.md", &taylor_view.to_markdown())?;
+    let mut others = Table::new(vec![
+        Column::plain("case", "case"),
+        Column::plain("status", "status"),
+        Column::plain("iterations", "its"),
+        Column::plain("active_points", "active"),
+        Column::new("error_vs_reference", "error", Unit::None, Format::Sci(1)),
+        Column::plain("note", "note"),
+    ]);
+    for r in rows.iter().filter(|r| !r.case.contains("_penalty_")) {
+        others.push(vec![
+            r.case.clone().into(),
+            r.status.into(),
+            r.history.len().into(),
+            r.active.into(),
+            r.error.into(),
+            text(&r.note()),
+        ])?;
+    }
+    chapter.text("cases.md", &others.to_markdown())?;
 
     let mut ranges = Table::new(vec![
         Column::plain("theta", "θ"),
@@ -388,42 +528,17 @@ fn main() -> Result<()> {
         ])?;
     }
     chapter.table("penalty_ranges", &ranges)?;
-
-    let mut kernels = Table::new(vec![
-        Column::plain("case", "case"),
-        Column::plain("theta", "θ"),
-        Column::plain("refined", "refined factorisations"),
-        Column::plain("lu_fallbacks", "LU fallbacks"),
-    ]);
-    let count = |h: &History, e: Event| h.count(|x| *x == e);
-    for r in &rows {
-        let (refined, lu) = (
-            count(&r.history, Event::KernelRefined),
-            count(&r.history, Event::KernelLuFallback),
-        );
-        if refined + lu > 0 {
-            kernels.push(vec![
-                r.case.clone().into(),
-                r.theta.value().into(),
-                refined.into(),
-                lu.into(),
-            ])?;
-        }
-    }
-    chapter.table("kernel_paths", &kernels)?;
     // ANCHOR_END: tables
 
     // ANCHOR: facts
     let f = chapter.facts();
     f.count("cases", rows.len())?;
-    f.count(
-        "converged",
-        rows.iter().filter(|r| r.status == "converged").count(),
-    )?;
-    f.count(
-        "failed",
-        rows.iter().filter(|r| r.status == "failed").count(),
-    )?;
+    let count = |pred: &dyn Fn(&Row) -> bool| rows.iter().filter(|r| pred(r)).count();
+    f.count("converged", count(&|r| r.status == "converged"))?;
+    f.count("failed", count(&|r| r.status == "failed"))?;
+    f.count("restarted", count(&|r| r.restarted()))?;
+    f.count("warned_below_bound", count(&|r| r.below > 0))?;
+    f.count("singular", count(&|r| r.error_kind == "singular_kernel"))?;
     f.number("tolerance", PENALTY_TOLERANCE, Format::Percent(0))?;
     for r in &rows {
         // keys: the case name with `_` for `.` and `-`, then the θ: t1, t0, tm1
@@ -437,16 +552,22 @@ fn main() -> Result<()> {
             f.number(&format!("{key}_error"), e, Format::Pow10(1))?;
             f.number(&format!("{key}_percent"), e, Format::Percent(1))?;
         }
+        if let Some(p0) = r.p0 {
+            f.number(&format!("{key}_p0"), p0 * 1e-6, Format::Pow10(2))?;
+        }
+        if let Some(p0) = r.reference {
+            f.number(&format!("{key}_reference"), p0 * 1e-6, Format::Pow10(2))?;
+        }
+        if let Some(b) = r.single_point_bracket {
+            f.number(&format!("{key}_bracket"), b * 1e-6, Format::Pow10(2))?;
+        }
+        if let Some(a) = r.active {
+            f.count(&format!("{key}_active"), a)?;
+        }
+        f.count(&format!("{key}_below"), r.below)?;
         f.text(&format!("{key}_status"), r.status)?;
         f.count(&format!("{key}_iterations"), r.history.len())?;
     }
-    let total = |e: Event| {
-        rows.iter()
-            .map(|r| count(&r.history, e.clone()))
-            .sum::<usize>()
-    };
-    f.count("kernel_refined", total(Event::KernelRefined))?;
-    f.count("kernel_lu_fallbacks", total(Event::KernelLuFallback))?;
     // ANCHOR_END: facts
     chapter.finish()
 }

@@ -17,7 +17,7 @@ use iga_contact::report::drawing::{field_cells, Placement};
 use iga_contact::report::plot::{
     field_figure, line_chart, Axes, LineKind, Polyline, Series, BLACK_INDEX,
 };
-use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::report::table::{Column, Format, Table, Unit, CONTACT_ERRORS};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
 use std::f64::consts::PI;
@@ -109,6 +109,7 @@ fn main() -> Result<()> {
     // ANCHOR_END: ladder
 
     // ANCHOR: table
+    let [p0_hertz, a_hertz, p0_reference, a_reference] = CONTACT_ERRORS;
     let mut table = Table::new(vec![
         Column::new("elements", "mesh (upper)", Unit::None, Format::Mesh),
         Column::plain("dofs", "DOFs"),
@@ -116,32 +117,10 @@ fn main() -> Result<()> {
         Column::plain("iterations", "its"),
         Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
         Column::new("half_width", "a", Unit::Millimetre, Format::Fixed(2)),
-        Column::new(
-            "p0_error_hertz",
-            "p₀ vs Hertz",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-        Column::new(
-            "half_width_error_hertz",
-            "a vs Hertz",
-            Unit::None,
-            Format::SignedPercent(2),
-        ),
-        Column::new(
-            "p0_error_reference",
-            "p₀ vs ref.",
-            Unit::None,
-            Format::SignedPercent(2),
-        )
-        .csv_only(),
-        Column::new(
-            "half_width_error_reference",
-            "a vs ref.",
-            Unit::None,
-            Format::SignedPercent(2),
-        )
-        .csv_only(),
+        p0_hertz,
+        a_hertz,
+        p0_reference.csv_only(),
+        a_reference.csv_only(),
         Column::plain("zones", "zones").csv_only(),
     ]);
     for r in runs.iter().chain(std::iter::once(&reference)) {
@@ -253,36 +232,30 @@ fn main() -> Result<()> {
     f.number("hertz_a_mm", exact.half_width * 1e3, Format::Fixed(3))?;
     f.number("radius_mm", exact.radius * 1e3, Format::Fixed(1))?;
     f.number("modulus_mpa", exact.modulus * 1e-6, Format::Fixed(2))?;
-    f.number(
-        "reference_p0_vs_hertz",
-        relative(reference.p0, exact.p0),
-        Format::SignedPercent(1),
-    )?;
-    f.number(
-        "reference_a_vs_hertz",
-        relative(reference.half_width, exact.half_width),
+    let hertz = [exact.p0, exact.half_width];
+    let reference_pa = [reference.p0, reference.half_width];
+    f.contact_errors(
+        "reference",
+        reference_pa,
+        "hertz",
+        hertz,
         Format::SignedPercent(1),
     )?;
     f.count("reference_dofs", reference.problem.n())?;
     let finest = bfgs.last().expect("a ladder");
-    f.number(
-        "finest_p0_vs_reference",
-        relative(finest.p0, reference.p0),
+    let finest_pa = [finest.p0, finest.half_width];
+    f.contact_errors(
+        "finest",
+        finest_pa,
+        "reference",
+        reference_pa,
         Format::SignedPercent(2),
     )?;
-    f.number(
-        "finest_a_vs_reference",
-        relative(finest.half_width, reference.half_width),
-        Format::SignedPercent(2),
-    )?;
-    f.number(
-        "finest_p0_vs_hertz",
-        relative(finest.p0, exact.p0),
-        Format::SignedPercent(2),
-    )?;
-    f.number(
-        "finest_a_vs_hertz",
-        relative(finest.half_width, exact.half_width),
+    f.contact_errors(
+        "finest",
+        finest_pa,
+        "hertz",
+        hertz,
         Format::SignedPercent(2),
     )?;
     let balance = runs

@@ -62,6 +62,34 @@ pub fn add_force_at(cp: &ContactPoint, sigma_n: f64, jump: f64, g: &mut [f64], l
     p
 }
 
+/// Adds to `size` (over the point's local DOFs) the magnitudes that the
+/// round-off of [`add_force_at`] scales with: the two terms of the force
+/// separately, and P with the sizes of the sums behind it. `sigma_size` and
+/// `jump_size` are Σ|s_k u_k| and Σ|j_k u_k|, the sums that give σ_n and
+/// ⟦u_n⟧; `p` is P as returned by [`add_force_at`].
+///
+/// Why not |force|: for an active point the two terms cancel to
+/// θ w g_n s + …, each of them of size w|σ_n|/γ, so when γ is small
+/// (or σ_n large) the computed force carries round-off of that larger size.
+pub fn add_force_size_at(
+    cp: &ContactPoint,
+    sigma_size: f64,
+    jump_size: f64,
+    p: f64,
+    law: Law,
+    size: &mut [f64],
+) {
+    let (th, ga, w) = (cp.theta, cp.gamma, cp.weight);
+    let p_size = sigma_size + ga * (cp.g0.abs() + jump_size);
+    let active = law == Law::Tied || p <= 0.0;
+    for (k, s) in size.iter_mut().enumerate() {
+        *s += (th / ga).abs() * w * sigma_size * cp.sn[k].abs();
+        if active {
+            *s += (w / ga) * p_size.max(p.abs()) * ((th * cp.sn[k]).abs() + ga * cp.jn[k].abs());
+        }
+    }
+}
+
 /// The local matrix of a point (rows: test functions, columns: trial):
 ///   −(θ/γ) w sn snᵀ + h (w/γ) (θ sn − γ jn)(sn − γ jn)ᵀ.
 /// With h = 1 this is the tied matrix (17); with h = H(P(u_k)) it is the

@@ -97,6 +97,13 @@ impl ContactPoint {
         let (s, j) = self.normal_stress_and_jump(u);
         s + self.gamma * (self.g0 - j)
     }
+
+    /// Whether γ lies below the stability bound of the point's slave
+    /// element ([`super::penalty::stability_bound`]): where such a point is
+    /// active, the tangent need not be coercive.
+    pub fn below_stability_bound(&self) -> bool {
+        self.gamma < super::penalty::stability_bound(self.trace_constant, self.theta)
+    }
 }
 
 /// The master side as a curve with everything needed to evaluate it.

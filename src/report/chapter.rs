@@ -13,6 +13,47 @@ pub fn generated_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated")
 }
 
+/// The `iga-contact` binary of this build, for chapter programs that show
+/// or probe the command line: `target/<profile>/iga-contact`, beside the
+/// folder of the running example. Refused when it is missing, or older than
+/// a source file of the crate — it would then not be the code the chapter
+/// describes (`cargo run --example` builds the examples, not the binary).
+pub fn cli_binary() -> Result<PathBuf> {
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| Error::Io { path, source }
+    };
+    let exe = std::env::current_exe().map_err(io(Path::new("the running program")))?;
+    let bin = exe
+        .parent()
+        .and_then(Path::parent)
+        .map(|d| d.join("iga-contact"))
+        .ok_or_else(|| Error::invalid("iga-contact binary", exe.display(), "no target folder"))?;
+    let built = std::fs::metadata(&bin)
+        .and_then(|m| m.modified())
+        .map_err(io(&bin))?;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut stack = vec![root.join("src"), root.join("Cargo.toml")];
+    while let Some(path) = stack.pop() {
+        let meta = std::fs::metadata(&path).map_err(io(&path))?;
+        if meta.is_dir() {
+            for entry in std::fs::read_dir(&path).map_err(io(&path))? {
+                stack.push(entry.map_err(io(&path))?.path());
+            }
+        } else if meta.modified().map_err(io(&path))? > built {
+            return Err(Error::invalid(
+                "iga-contact binary",
+                bin.display(),
+                format!(
+                    "older than {}: run `cargo build --release` first",
+                    path.strip_prefix(root).unwrap_or(&path).display()
+                ),
+            ));
+        }
+    }
+    Ok(bin)
+}
+
 /// How long a chapter program runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Cost {
@@ -43,7 +84,7 @@ const fn program(example: &'static str, chapter: &'static str, cost: Cost) -> Pr
 }
 
 /// Every chapter program, in the order of the book.
-pub const PROGRAMS: [Program; 13] = [
+pub const PROGRAMS: &[Program] = &[
     program("formulation", "formulation", Cost::Quick),
     program("lame", "lame", Cost::Quick),
     program("taylor", "taylor", Cost::Quick),
@@ -56,6 +97,7 @@ pub const PROGRAMS: [Program; 13] = [
     program("penalty", "penalty", Cost::Quick),
     program("penalty_contrast", "penalty_contrast", Cost::Heavy),
     program("stability", "stability", Cost::Quick),
+    program("scenes", "scenes", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),
 ];
 

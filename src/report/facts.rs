@@ -85,6 +85,25 @@ impl Facts {
         self.text(key, format.render(value))
     }
 
+    /// Records the relative errors of a peak pressure and a half-width,
+    /// `measured = [p₀, a]` against `truth = [p₀, a]`, as the facts
+    /// `{prefix}_p0_vs_{against}` and `{prefix}_a_vs_{against}`: the one
+    /// naming of these errors across the chapters.
+    pub fn contact_errors(
+        &mut self,
+        prefix: &str,
+        measured: [f64; 2],
+        against: &str,
+        truth: [f64; 2],
+        format: Format,
+    ) -> Result<()> {
+        for (name, (m, t)) in ["p0", "a"].iter().zip(measured.into_iter().zip(truth)) {
+            let key = format!("{prefix}_{name}_vs_{against}");
+            self.number(&key, crate::post::relative(m, t), format)?;
+        }
+        Ok(())
+    }
+
     /// Records a number derived from wall-clock times (a time, or a ratio of
     /// times measured in one run): it changes from run to run, so checks of
     /// the book against a fresh run leave it out.
@@ -94,7 +113,15 @@ impl Facts {
         Ok(())
     }
 
-    /// The keys recorded by [`Facts::timed_number`].
+    /// Records a text that changes from run to run (a date, the machine's
+    /// load), left out of checks against a fresh run like a timed number.
+    pub fn timed_text(&mut self, key: &str, text: impl Into<String>) -> Result<()> {
+        self.text(key, text)?;
+        self.timed.insert(key.to_string());
+        Ok(())
+    }
+
+    /// The keys recorded by [`Facts::timed_number`] and [`Facts::timed_text`].
     pub fn timed_keys(&self) -> impl Iterator<Item = &str> {
         self.timed.iter().map(String::as_str)
     }

@@ -206,6 +206,39 @@ impl Column {
     }
 }
 
+/// The four relative errors every contact ladder reports (CSV keys
+/// `p0_error_hertz`, `half_width_error_hertz`, `p0_error_reference`,
+/// `half_width_error_reference`): the peak pressure p₀ and the half-width a,
+/// each against the closed form and against the fine-mesh reference, as
+/// signed percentages. Declared once so that every chapter's columns and
+/// headers agree.
+pub const CONTACT_ERRORS: [Column; 4] = [
+    Column::new(
+        "p0_error_hertz",
+        "p₀ vs Hertz",
+        Unit::None,
+        Format::SignedPercent(2),
+    ),
+    Column::new(
+        "half_width_error_hertz",
+        "a vs Hertz",
+        Unit::None,
+        Format::SignedPercent(2),
+    ),
+    Column::new(
+        "p0_error_reference",
+        "p₀ vs ref.",
+        Unit::None,
+        Format::SignedPercent(2),
+    ),
+    Column::new(
+        "half_width_error_reference",
+        "a vs ref.",
+        Unit::None,
+        Format::SignedPercent(2),
+    ),
+];
+
 /// A table cell.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Cell {

@@ -9,7 +9,10 @@
 use super::history::{Event, History};
 use super::kernel::Kernels;
 use super::system::System;
-use super::{dot, line_search, norm, CorrectOn, Damping, Fallback, SolverOptions, Status, Tracker};
+use super::{
+    dot, end_iteration, line_search, norm, Attempt, CorrectOn, Damping, Fallback, Iterate,
+    SolverOptions, Start, Tracker,
+};
 use crate::error::Result;
 use crate::problem::Problem;
 
@@ -92,27 +95,38 @@ impl InverseUpdate {
 /// stays: on Hertz the iteration and factorisation counts are those of
 /// semismooth Newton.
 ///
-/// Returns the iterate (in the space of `sys`), the history and the
-/// number of kernel factorisations.
+/// One start of the iteration, from u = 0 with the kernel of `start`,
+/// continuing `history` (the rows of an earlier start, or none).
 pub(crate) fn solve(
     sys: &mut dyn System<'_>,
     problem: &Problem,
     opts: &SolverOptions,
+    start: Start,
+    history: History,
     correct: bool,
-) -> Result<(Vec<f64>, History, usize)> {
+) -> Result<Attempt> {
     let n = sys.dim();
     let mut u = vec![0.0; n];
     let (mut r, mut state, floor) = sys.residual_forced(&u, &[]);
-    let mut tracker = Tracker::new(opts, norm(&r));
+    let mut events = Vec::new();
+    if !history.is_empty() {
+        events.push(Event::Restart);
+    }
+    let mut tracker = Tracker::new(opts, norm(&r), history);
     if Tracker::at_floor(&r, floor) {
-        return Ok((u, tracker.history, 0));
+        return Ok(Attempt {
+            u,
+            history: tracker.history,
+            factorisations: 0,
+            stalled: false,
+        });
     }
     let mut kernels = Kernels::new(sys, problem);
-    let mut events = Vec::new();
-    let mut kernel = kernels.start(opts.start, &mut u, &mut r, &mut events)?;
+    let mut kernel = kernels.start(start, &mut u, &mut r, &mut events)?;
     let mut update = InverseUpdate::default();
     let mut corrections = 0;
     let mut cycled = false;
+    let first_row = tracker.history.len();
     loop {
         // right after a guarded (re)factorisation, the step follows the
         // residual of the guard's force law
@@ -123,7 +137,7 @@ pub(crate) fn solve(
         };
         let guarded = kernel.guarded() && update.is_empty();
         let dir = update.apply(&drive, |q| kernel.factor.solve(q))?;
-        let damped = !tracker.history.is_empty()
+        let damped = tracker.history.len() > first_row
             && !guarded
             && match opts.damping {
                 Damping::AfterCorrections => corrections >= opts.line_search_after,
@@ -147,7 +161,7 @@ pub(crate) fn solve(
         if let Err(curvature) = update.push(du.clone(), y, opts.curvature_tol) {
             events.push(Event::SkippedUpdate { curvature });
         }
-        let k = tracker.history.len() + 1;
+        let k = tracker.history.len() + 1 - first_row;
         let grew = norm(&r_new) > norm(&r);
         let done = tracker.converged(&u, &du, &r_new, step.floor);
         let trigger = match opts.correct_on {
@@ -162,12 +176,16 @@ pub(crate) fn solve(
             update.clear();
         }
         r = r_new;
-        let max_u = kernels.sys.max_displacement(&u);
-        let row_events = std::mem::take(&mut events);
-        if let Status::Converged =
-            tracker.record(&u, &du, &r, step.floor, state.active, max_u, row_events)?
-        {
-            return Ok((u, tracker.history, kernels.factorisations));
+        let it = Iterate {
+            du: &du,
+            r: &r,
+            floor: step.floor,
+            active: state.active,
+            events: std::mem::take(&mut events),
+            damped,
+        };
+        if let Some(end) = end_iteration(&mut tracker, &kernels, problem, &mut u, it) {
+            return end;
         }
     }
 }

@@ -20,6 +20,10 @@ pub enum Event {
     /// The low-rank kernel factorisation was refused (S not positive
     /// definite, or inaccurate even with refinement); LU took over.
     KernelLuFallback,
+    /// The damped iteration from the first start stalled, so the solve
+    /// started again from u = 0 with the tied kernel (17)
+    /// ([`super::OnStall::RestartTied`]).
+    Restart,
 }
 
 impl fmt::Display for Event {
@@ -33,6 +37,7 @@ impl fmt::Display for Event {
             Event::FloatingGuard => write!(f, "floating guard"),
             Event::KernelRefined => write!(f, "kernel refined"),
             Event::KernelLuFallback => write!(f, "kernel by LU"),
+            Event::Restart => write!(f, "restart from the tied kernel"),
         }
     }
 }
@@ -101,5 +106,21 @@ impl History {
 
     pub fn skipped_updates(&self) -> usize {
         self.count(|e| matches!(e, Event::SkippedUpdate { .. }))
+    }
+
+    /// The period of an exact cycle at the end of the history: the
+    /// smallest p in 2..=30 such that the last three periods repeat, active
+    /// counts equal and relative residuals within 10⁻⁶ of each other.
+    pub fn cycle_period(&self) -> Option<usize> {
+        let rows = &self.rows;
+        (2..=30).find(|&p| {
+            rows.len() >= 3 * p
+                && (rows.len() - 2 * p..rows.len()).all(|i| {
+                    let (a, b) = (&rows[i], &rows[i - p]);
+                    a.active_points == b.active_points
+                        && (a.relative_residual - b.relative_residual).abs()
+                            <= 1e-6 * a.relative_residual.abs()
+                })
+        })
     }
 }

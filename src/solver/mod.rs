@@ -9,14 +9,17 @@
 //! over every free DOF, which reproduces the paper's iteration history
 //! (its start u = 0 is not interior-relaxed, so its first pair differs).
 //!
-//! Convergence (both solvers): ‖R(u_k)‖ ≤ max(`rtol`·‖R(u_0)‖, floor) and
-//! ‖Δu_k‖ ≤ `utol`·‖u_k‖, where the floor is [`ROUND_OFF`] times the
-//! round-off of evaluating R at u_k, ε ‖ |f| + |A||u| + |contact terms| ‖.
-//! A residual at the floor is converged whatever the update: floating
-//! point cannot resolve a smaller one. The iteration count is bounded by
-//! `max_iter`; when it runs out, or the residual stops being finite, the
-//! solver returns [`crate::Error::NotConverged`] carrying the whole
-//! [`history::History`].
+//! Convergence (both solvers): ‖R(u_k)‖ ≤ max(`rtol`·‖R(u_0)‖, cancelling
+//! floor) and ‖Δu_k‖ ≤ `utol`·‖u_k‖, or ‖R(u_k)‖ at the typical floor
+//! whatever the update ([`Floor`]: [`ROUND_OFF`] times the round-off of
+//! evaluating R at u_k, ε ‖ |f| + |A||u| + |contact terms| ‖, the contact
+//! terms counted as computed or before they cancel). A damped iteration
+//! that stops making progress has stalled; by default the solve then
+//! starts once more from the tied kernel ([`OnStall`]). The iteration
+//! count is bounded by `max_iter`; when it runs out, the residual stops
+//! being finite or the last start stalls, the solver returns
+//! [`crate::Error::NotConverged`] carrying the whole [`history::History`]
+//! and a diagnosis. A converged [`Solution`] lists its [`Warning`]s.
 
 pub mod bfgs;
 pub(crate) mod guard;
@@ -101,6 +104,24 @@ pub enum IterationSpace {
     Body,
 }
 
+/// What a solve does when its damped steps stop making progress: the
+/// best ‖R‖ has not fallen by [`STALL_PROGRESS`] in [`STALL_WINDOW`]
+/// damped iterations. Full-step iterations are never judged stalled (they
+/// may legitimately raise ‖R‖ for a while).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OnStall {
+    /// Stop with [`crate::Error::NotConverged`], saying so.
+    Fail,
+    /// Start again once from u = 0 with the tied kernel (17), keeping the
+    /// history ([`Event::Restart`]); stop if that stalls too. A problem
+    /// whose discrete tangent is not coercive on the active sets the first
+    /// start meets can have roots that the iteration from the tied side
+    /// reaches (measured: Hertz 16×16 at ν = 0.4999).
+    #[default]
+    RestartTied,
+}
+
 /// Tolerances and limits.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -129,6 +150,8 @@ pub struct SolverOptions {
     pub correct_on: CorrectOn,
     /// Where the iteration runs.
     pub space: IterationSpace,
+    /// What a stalled damped iteration does.
+    pub on_stall: OnStall,
 }
 
 impl Default for SolverOptions {
@@ -146,6 +169,7 @@ impl Default for SolverOptions {
             start: Start::Secant,
             correct_on: CorrectOn::ActiveSet,
             space: IterationSpace::Auto,
+            on_stall: OnStall::RestartTied,
         }
     }
 }
@@ -170,6 +194,7 @@ impl SolverOptions {
             start: Start::Tied,
             correct_on: CorrectOn::Growth,
             space: IterationSpace::Body,
+            on_stall: OnStall::Fail,
             ..Self::default()
         }
     }
@@ -219,6 +244,78 @@ pub struct Phases {
     pub recovery: f64,
 }
 
+/// Something a converged solve reports about its answer: it solves the
+/// discrete equations, but may not be the contact solution the user wants.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Warning {
+    /// Active points of contact pair `pair` whose penalty lies below the
+    /// stability bound of their element: the tangent need not be coercive
+    /// on this active set, so the root found need not be the only one.
+    PenaltyBelowBound {
+        pair: usize,
+        below: usize,
+        active: usize,
+    },
+    /// The contact zone of pair `pair` rests on fewer than [`RESOLVED`]
+    /// active points: the mesh does not resolve it, and measures of the
+    /// pressure (its peak, its width) are set by the quadrature spacing and
+    /// the penalty rather than by the load.
+    UnresolvedContact { pair: usize, active: usize },
+}
+
+/// The fewest active points that count as resolving a contact zone.
+pub const RESOLVED: usize = 3;
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Warning::PenaltyBelowBound {
+                pair,
+                below,
+                active,
+            } => write!(
+                f,
+                "contact[{pair}]: {below} of the {active} active points {} a penalty below the stability bound of their element, so this solution need not be unique (raise nitsche.penalty_factor, or use theta = -1)",
+                if *below == 1 { "has" } else { "have" }
+            ),
+            Warning::UnresolvedContact { pair, active } => write!(
+                f,
+                "contact[{pair}]: the contact zone rests on {active} quadrature point(s): the mesh does not resolve it, and its peak pressure and width are not meaningful"
+            ),
+        }
+    }
+}
+
+/// The warnings of a converged solution `full` (all DOFs).
+pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
+    let mut out = Vec::new();
+    for pair in 0..problem.pairs.len() {
+        let active: Vec<_> = problem
+            .points
+            .iter()
+            .filter(|cp| cp.pair == pair && cp.p(full) <= 0.0)
+            .collect();
+        let below = active
+            .iter()
+            .filter(|cp| cp.below_stability_bound())
+            .count();
+        if below > 0 {
+            out.push(Warning::PenaltyBelowBound {
+                pair,
+                below,
+                active: active.len(),
+            });
+        }
+        if (1..RESOLVED).contains(&active.len()) {
+            out.push(Warning::UnresolvedContact {
+                pair,
+                active: active.len(),
+            });
+        }
+    }
+    out
+}
+
 /// A converged solution.
 #[derive(Clone, Debug)]
 pub struct Solution {
@@ -233,6 +330,78 @@ pub struct Solution {
     /// Whether the iteration ran on the layer.
     pub on_trace: bool,
     pub phases: Phases,
+    /// What the answer may not be ([`warnings`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// How one start of an iteration ended: converged, or stalled at `u`.
+pub(crate) struct Attempt {
+    pub u: Vec<f64>,
+    pub history: History,
+    pub factorisations: usize,
+    pub stalled: bool,
+}
+
+/// What a solver does with the `status` of its last row: go on (`None`),
+/// or end this start with the iterate `u`.
+pub(crate) fn settle(
+    status: Status,
+    u: &mut Vec<f64>,
+    tracker: &mut Tracker,
+    sys: &dyn System,
+    problem: &Problem,
+    factorisations: usize,
+) -> Option<Result<Attempt>> {
+    let history = std::mem::take(&mut tracker.history);
+    let stalled = match status {
+        Status::Continue => {
+            tracker.history = history;
+            return None;
+        }
+        Status::Converged => false,
+        Status::Stalled => true,
+        Status::Failed(reason) => return Some(Err(failure(sys, problem, u, reason, history))),
+    };
+    Some(Ok(Attempt {
+        u: std::mem::take(u),
+        history,
+        factorisations,
+        stalled,
+    }))
+}
+
+/// What an iteration of either solver ends with, for [`end_iteration`].
+pub(crate) struct Iterate<'a> {
+    pub du: &'a [f64],
+    pub r: &'a [f64],
+    pub floor: Floor,
+    pub active: usize,
+    pub events: Vec<Event>,
+    /// The step went through the line search.
+    pub damped: bool,
+}
+
+/// The end of an iteration of either solver: records its row at `u` and
+/// [`settle`]s the status (`None`: go on).
+pub(crate) fn end_iteration(
+    tracker: &mut Tracker,
+    kernels: &kernel::Kernels,
+    problem: &Problem,
+    u: &mut Vec<f64>,
+    it: Iterate,
+) -> Option<Result<Attempt>> {
+    let max_u = kernels.sys.max_displacement(u);
+    let status = tracker.record(
+        u, it.du, it.r, it.floor, it.active, max_u, it.events, it.damped,
+    );
+    settle(
+        status,
+        u,
+        tracker,
+        &*kernels.sys,
+        problem,
+        kernels.factorisations,
+    )
 }
 
 /// Runs the solver chosen in `opts`.
@@ -256,11 +425,36 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
         0.0
     };
     let t = Instant::now();
-    let (u, history, factorisations) = match opts.kind {
-        SolverKind::Bfgs => bfgs::solve(sys.as_mut(), problem, opts, true)?,
-        SolverKind::BfgsNoCorrection => bfgs::solve(sys.as_mut(), problem, opts, false)?,
-        SolverKind::Newton => newton::solve(sys.as_mut(), problem, opts)?,
-    };
+    let mut starts = vec![opts.start];
+    if opts.on_stall == OnStall::RestartTied && opts.start != Start::Tied {
+        starts.push(Start::Tied);
+    }
+    let mut history = History::default();
+    let mut factorisations = 0;
+    let mut solved = None;
+    for (k, &start) in starts.iter().enumerate() {
+        let attempt = match opts.kind {
+            SolverKind::Bfgs => bfgs::solve(sys.as_mut(), problem, opts, start, history, true)?,
+            SolverKind::BfgsNoCorrection => {
+                bfgs::solve(sys.as_mut(), problem, opts, start, history, false)?
+            }
+            SolverKind::Newton => newton::solve(sys.as_mut(), problem, opts, start, history)?,
+        };
+        factorisations += attempt.factorisations;
+        history = attempt.history;
+        if !attempt.stalled {
+            solved = Some(attempt.u);
+            break;
+        }
+        if k + 1 == starts.len() {
+            let reason = format!(
+                "stalled: the damped steps lowered ‖R‖ by less than {} in {STALL_WINDOW} iterations",
+                crate::report::table::Format::Percent(0).render(STALL_PROGRESS)
+            );
+            return Err(failure(sys.as_ref(), problem, &attempt.u, &reason, history));
+        }
+    }
+    let u = solved.expect("the last start either converges or returns");
     let iterations = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let u = sys.body(u);
@@ -270,6 +464,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
         0.0
     };
     let full = problem.map.expand(&u);
+    let warnings = warnings(problem, &full);
     Ok(Solution {
         u,
         full,
@@ -281,6 +476,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
             iterations,
             recovery,
         },
+        warnings,
     })
 }
 
@@ -289,6 +485,12 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
 /// a few to a few tens of floors (measured: 5–25 on Hertz 8², θ = −1), so
 /// a smaller multiple would ask for iterations that cannot help.
 pub const ROUND_OFF: f64 = 100.0;
+
+/// A damped iteration whose best ‖R‖ has not fallen by this fraction in
+/// [`STALL_WINDOW`] iterations has stalled.
+pub const STALL_PROGRESS: f64 = 0.01;
+/// See [`STALL_PROGRESS`].
+pub const STALL_WINDOW: usize = 10;
 
 pub(crate) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -305,40 +507,103 @@ pub(crate) fn max_displacement(full: &[f64]) -> f64 {
         .fold(0.0, |m: f64, v| if v.abs() > m.abs() { v } else { m })
 }
 
-/// Shared bookkeeping: record a row, decide convergence or failure.
+/// The error of a failed solve, with what the last iterate `u` (in the
+/// space of `sys`) and the history say about why: a floating body, an
+/// exact cycle, skipped BFGS pairs, active points below the stability
+/// bound of the penalty.
+pub(crate) fn failure(
+    sys: &dyn System,
+    problem: &Problem,
+    u: &[f64],
+    reason: &str,
+    history: History,
+) -> Error {
+    let mut parts = vec![reason.to_string()];
+    if let Some(period) = history.cycle_period() {
+        parts.push(format!(
+            "the iterates repeat with period {period} (active points {})",
+            history.rows[history.len() - period..]
+                .iter()
+                .map(|r| r.active_points.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    let p = sys.p_values(u);
+    let active: Vec<usize> = (0..p.len()).filter(|&q| p[q] <= 0.0).collect();
+    if active.is_empty() {
+        parts.push("active set empty: the body floats".into());
+    } else {
+        let below = active
+            .iter()
+            .filter(|&&q| problem.points[q].below_stability_bound())
+            .count();
+        if below > 0 {
+            parts.push(format!(
+                "{below} of the {} active points {} a penalty below the stability bound of their element, so the tangent need not be coercive (raise nitsche.penalty_factor, or use theta = -1)",
+                active.len(),
+                if below == 1 { "has" } else { "have" }
+            ));
+        }
+    }
+    let skipped = history.skipped_updates();
+    if skipped > 0 {
+        parts.push(if skipped == 1 {
+            "curvature condition failed once".to_string()
+        } else {
+            format!("curvature condition failed {skipped} times")
+        });
+    }
+    Error::NotConverged {
+        reason: parts.join("; "),
+        history,
+    }
+}
+
+/// Shared bookkeeping: record a row, decide convergence, failure or a stall.
 pub(crate) struct Tracker<'a> {
     pub opts: &'a SolverOptions,
     pub history: History,
+    /// The best ‖R‖ that counts as progress, and the row count when it
+    /// was reached.
+    best: (f64, usize),
 }
 
 pub(crate) enum Status {
     Converged,
     Continue,
+    Stalled,
+    Failed(&'static str),
 }
 
 impl<'a> Tracker<'a> {
-    pub fn new(opts: &'a SolverOptions, r0: f64) -> Self {
+    /// Continues `history` (empty, or the rows of an earlier start) from a
+    /// start whose residual is `r0`.
+    pub fn new(opts: &'a SolverOptions, r0: f64, mut history: History) -> Self {
+        history.initial_residual = r0;
+        let rows = history.len();
         Self {
             opts,
-            history: History {
-                initial_residual: r0,
-                rows: Vec::new(),
-            },
+            history,
+            best: (f64::INFINITY, rows),
         }
     }
 
-    /// Records iteration `k` and checks the stopping rules.
+    /// Records an iteration and checks the stopping rules; `damped`: the
+    /// step went through the line search (only such an iteration can be
+    /// judged stalled).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
         u: &[f64],
         du: &[f64],
         r: &[f64],
-        floor: f64,
+        floor: Floor,
         active: usize,
         max_displacement: f64,
         events: Vec<Event>,
-    ) -> Result<Status> {
+        damped: bool,
+    ) -> Status {
         let rn = norm(r);
         let un = norm(du);
         let r0 = self.history.initial_residual;
@@ -353,53 +618,53 @@ impl<'a> Tracker<'a> {
             events,
         });
         if !rn.is_finite() || !un.is_finite() || rel > 1e12 {
-            return Err(self.fail("the iteration diverged"));
+            return Status::Failed("the iteration diverged");
         }
         if self.converged(u, du, r, floor) {
-            return Ok(Status::Converged);
+            return Status::Converged;
         }
         if self.history.len() >= self.opts.max_iter {
-            return Err(self.fail("iteration limit reached"));
+            return Status::Failed("iteration limit reached");
         }
-        Ok(Status::Continue)
+        if rn < (1.0 - STALL_PROGRESS) * self.best.0 {
+            self.best = (rn, self.history.len());
+        } else if damped && self.history.len() - self.best.1 >= STALL_WINDOW {
+            return Status::Stalled;
+        }
+        Status::Continue
     }
 
     /// Whether ‖R‖ is at the round-off floor: no iteration can lower it.
-    pub fn at_floor(r: &[f64], floor: f64) -> bool {
-        norm(r) <= ROUND_OFF * floor
+    pub fn at_floor(r: &[f64], floor: Floor) -> bool {
+        norm(r) <= ROUND_OFF * floor.typical
     }
 
-    /// The stopping rule: ‖R‖ ≤ max(rtol·‖R₀‖, floor) and ‖Δu‖ ≤
-    /// utol·‖u‖, or ‖R‖ at the floor.
-    pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64], floor: f64) -> bool {
+    /// The stopping rule: ‖R‖ at the typical floor, whatever the update;
+    /// or ‖R‖ ≤ max(rtol·‖R₀‖, the cancelling floor) and ‖Δu‖ ≤ utol·‖u‖.
+    pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64], floor: Floor) -> bool {
         if Self::at_floor(r, floor) {
             return true;
         }
         let r0 = self.history.initial_residual;
-        norm(r) <= self.opts.rtol * r0
+        norm(r) <= (self.opts.rtol * r0).max(ROUND_OFF * floor.cancelling)
             && norm(du) <= self.opts.utol * norm(u).max(f64::MIN_POSITIVE)
     }
+}
 
-    /// The error for a failed solve, diagnosing a floating body.
-    pub fn fail(&self, reason: &str) -> Error {
-        let floating = self
-            .history
-            .rows
-            .last()
-            .is_some_and(|r| r.active_points == 0);
-        let skipped = self.history.skipped_updates();
-        let reason = if floating {
-            format!("{reason}; active set empty: the body floats")
-        } else if skipped > 0 {
-            format!("{reason}; curvature condition failed {skipped} times")
-        } else {
-            reason.to_string()
-        };
-        Error::NotConverged {
-            reason,
-            history: self.history.clone(),
-        }
-    }
+/// What floating point can resolve of ‖R‖ at an iterate: ε times the
+/// norm of the component-wise sums of the magnitudes of the terms of R.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Floor {
+    /// Each contact force counted as computed: the round-off R carries
+    /// in practice. A residual within [`ROUND_OFF`] of it is converged,
+    /// whatever the update.
+    pub typical: f64,
+    /// Each contact force counted by its terms before they cancel
+    /// ([`crate::contact::nitsche::add_force_size_at`]): a bound, far above
+    /// `typical` when the penalty is small or the stresses large. A
+    /// residual within [`ROUND_OFF`] of it is converged once the update is
+    /// small too.
+    pub cancelling: f64,
 }
 
 /// The outcome of [`line_search`].
@@ -409,8 +674,8 @@ pub(crate) struct Step {
     pub u: Vec<f64>,
     pub r: Vec<f64>,
     pub state: crate::problem::ContactState,
-    /// The round-off floor of ‖R‖ at `u`.
-    pub floor: f64,
+    /// The round-off floors of ‖R‖ at `u`.
+    pub floor: Floor,
 }
 
 const MAX_CUTS: usize = 30;

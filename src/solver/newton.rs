@@ -19,31 +19,46 @@
 use super::history::{Event, History};
 use super::kernel::Kernels;
 use super::system::System;
-use super::{line_search, norm, Damping, Fallback, SolverOptions, Status, Tracker};
+use super::{
+    end_iteration, line_search, norm, Attempt, Damping, Fallback, Iterate, SolverOptions, Start,
+    Tracker,
+};
 use crate::error::Result;
 use crate::problem::Problem;
 
-/// Returns the iterate (in the space of `sys`), the history and the
-/// number of kernel factorisations.
+/// One start of the iteration, from u = 0 with the kernel of `start`,
+/// continuing `history` (the rows of an earlier start, or none).
 pub(crate) fn solve(
     sys: &mut dyn System<'_>,
     problem: &Problem,
     opts: &SolverOptions,
-) -> Result<(Vec<f64>, History, usize)> {
+    start: Start,
+    history: History,
+) -> Result<Attempt> {
     let n = sys.dim();
     let mut u = vec![0.0; n];
     let (mut r, _, floor) = sys.residual_forced(&u, &[]);
-    let mut tracker = Tracker::new(opts, norm(&r));
+    let restarted = !history.is_empty();
+    let mut tracker = Tracker::new(opts, norm(&r), history);
     if Tracker::at_floor(&r, floor) {
-        return Ok((u, tracker.history, 0));
+        return Ok(Attempt {
+            u,
+            history: tracker.history,
+            factorisations: 0,
+            stalled: false,
+        });
     }
     let mut kernels = Kernels::new(sys, problem);
     let mut cycled = false;
+    let first_row = tracker.history.len();
     loop {
         let mut events = Vec::new();
-        let first = tracker.history.is_empty();
+        let first = tracker.history.len() == first_row;
+        if first && restarted {
+            events.push(Event::Restart);
+        }
         let tangent = if first {
-            kernels.start(opts.start, &mut u, &mut r, &mut events)?
+            kernels.start(start, &mut u, &mut r, &mut events)?
         } else {
             kernels.secant(&u, &mut events)?
         };
@@ -69,11 +84,16 @@ pub(crate) fn solve(
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
         u = step.u;
         r = step.r;
-        let max_u = kernels.sys.max_displacement(&u);
-        if let Status::Converged =
-            tracker.record(&u, &du, &r, step.floor, step.state.active, max_u, events)?
-        {
-            return Ok((u, tracker.history, kernels.factorisations));
+        let it = Iterate {
+            du: &du,
+            r: &r,
+            floor: step.floor,
+            active: step.state.active,
+            events,
+            damped,
+        };
+        if let Some(end) = end_iteration(&mut tracker, &kernels, problem, &mut u, it) {
+            return end;
         }
     }
 }

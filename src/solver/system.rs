@@ -7,6 +7,7 @@
 use super::history::Event;
 use super::kernel::{factor_kernel, Factorisation};
 use super::trace::{DenseLu, TraceProblem};
+use super::Floor;
 use crate::error::Result;
 use crate::linsolve::{Factor, Factoriser};
 use crate::problem::{ContactState, Kernel, Problem};
@@ -46,8 +47,8 @@ pub(crate) trait System<'p> {
     fn dim(&self) -> usize;
     fn p_values(&self, u: &[f64]) -> Vec<f64>;
     /// The residual with the points marked in `forced` under the tied law,
-    /// the contact state, and the round-off floor of ‖R‖ at `u`.
-    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, f64);
+    /// the contact state, and the round-off floors of ‖R‖ at `u`.
+    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor);
     /// The kernel of the activity `h` (one H per contact point).
     fn factor(&mut self, h: &[f64], events: &mut Vec<Event>) -> Result<Rc<dyn LinearSolve + 'p>>;
 
@@ -92,10 +93,17 @@ impl<'p> System<'p> for BodySystem<'p> {
         self.problem.p_values(u)
     }
 
-    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, f64) {
+    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor) {
         let (r, state) = self.problem.residual_forced(u, forced);
-        let floor = self.problem.residual_floor(u);
-        (r, state, floor)
+        let (typical, cancelling) = self.problem.residual_floor(u);
+        (
+            r,
+            state,
+            Floor {
+                typical,
+                cancelling,
+            },
+        )
     }
 
     fn factor(&mut self, h: &[f64], events: &mut Vec<Event>) -> Result<Rc<dyn LinearSolve + 'p>> {
@@ -150,7 +158,7 @@ impl<'p> System<'p> for TraceSystem<'p> {
         self.trace.p_values(u)
     }
 
-    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, f64) {
+    fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor) {
         self.trace.residual_forced(u, forced)
     }
 

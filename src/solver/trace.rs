@@ -16,8 +16,9 @@
 //! operations, so an iteration costs O(ℓ²) and a kernel O(ℓ³) — against
 //! a sparse triangular pass over the whole body before.
 
+use super::Floor;
 use crate::condense::Condensation;
-use crate::contact::nitsche::{add_force_at, local_matrix, Law};
+use crate::contact::nitsche::{add_force_at, add_force_size_at, local_matrix, Law};
 use crate::contact::ContactPoint;
 use crate::error::{Error, Result};
 use crate::problem::{ContactState, Problem};
@@ -131,6 +132,17 @@ impl<'a> TraceProblem<'a> {
         (s, j)
     }
 
+    /// Σ|s_k u_k| and Σ|j_k u_k| of a point (the sizes of the sums that
+    /// give σ_n and ⟦u_n⟧), for the round-off floor.
+    fn stress_and_jump_sizes(cp: &ContactPoint, lp: &LayerPoint, u: &[f64]) -> (f64, f64) {
+        let (mut s, mut j) = (lp.sigma_fixed.abs(), lp.jump_fixed.abs());
+        for (&i, &k) in lp.at.iter().zip(&lp.local) {
+            s += (cp.sn[k] * u[i]).abs();
+            j += (cp.jn[k] * u[i]).abs();
+        }
+        (s, j)
+    }
+
     /// P at every contact point for the layer displacement `u`.
     pub fn p_values(&self, u: &[f64]) -> Vec<f64> {
         self.pairs()
@@ -143,12 +155,15 @@ impl<'a> TraceProblem<'a> {
 
     /// R̂(u) over the layer, with the points marked in `forced` under the
     /// tied law (see [`Problem::residual_forced`]); also the round-off
-    /// floor of its evaluation, ε ‖ |f̂| + |S₀||u| + |G||u| + |g_c| ‖.
-    pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, f64) {
+    /// floor of its evaluation, ε ‖ |f̂| + |S₀||u| + |G||u| + |g_c| ‖, with
+    /// g_c counted as computed and before its terms cancel ([`Floor`]).
+    pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor) {
         let ell = self.dim();
         let s0 = self.cond.schur();
         let mut r = self.fhat.clone();
         let mut size: Vec<f64> = self.fhat.iter().map(|v| v.abs()).collect();
+        // the same, with the contact forces counted before they cancel
+        let mut wide = Vec::new();
         for j in 0..ell {
             let uj = u[j];
             if uj == 0.0 {
@@ -160,6 +175,7 @@ impl<'a> TraceProblem<'a> {
                 *si += a.abs();
             }
         }
+        wide.extend_from_slice(&size);
         let mut active = 0;
         for (q, (cp, lp)) in self.pairs().enumerate() {
             // + G u on the free layer DOFs (the penalty added to A₀)
@@ -176,16 +192,24 @@ impl<'a> TraceProblem<'a> {
                 Some(true) => Law::Tied,
                 _ => Law::Contact,
             };
-            if add_force_at(cp, sigma, jump, &mut g, law) <= 0.0 {
+            let p = add_force_at(cp, sigma, jump, &mut g, law);
+            if p <= 0.0 {
                 active += 1;
             }
+            let (sigma_size, jump_size) = Self::stress_and_jump_sizes(cp, lp, u);
+            let mut g_size = vec![0.0; cp.dofs.len()];
+            add_force_size_at(cp, sigma_size, jump_size, p, law, &mut g_size);
             for (&i, &k) in lp.at.iter().zip(&lp.local) {
                 let a = wg * cp.jn[k] * ju;
                 r[i] += a - g[k];
                 size[i] += a.abs() + g[k].abs();
+                wide[i] += a.abs() + g_size[k];
             }
         }
-        let floor = f64::EPSILON * super::norm(&size);
+        let floor = Floor {
+            typical: f64::EPSILON * super::norm(&size),
+            cancelling: f64::EPSILON * super::norm(&wide),
+        };
         (r, ContactState { active }, floor)
     }
 

@@ -1,0 +1,105 @@
+//! The GetFEM peer of the chapter "Error against run time": its committed
+//! CSV reads, holds the problem the chapter compares with, and bad data is
+//! refused naming the file, the line, the column and the value.
+
+#[path = "../examples/error_vs_time/getfem.rs"]
+#[allow(dead_code)]
+mod getfem;
+
+mod common;
+
+use iga_contact::post::{PressureProfile, Reference};
+use iga_contact::solver::{solve, SolverOptions};
+use iga_contact::Error;
+
+const HEADER: &str = "code,element,degree,elements,dofs,p0,half_width,newton_iterations,\
+                      converged,seconds,getfem_version,date";
+const LINE: &str = "getfem,Q2,2,8,578,2.4e+06,4.3e-02,13,true,0.0842,5.4.2,2026-11-30";
+
+fn refused(text: &str) -> (String, String) {
+    match getfem::parse(text) {
+        Err(Error::InvalidInput { field, value, .. }) => (field, value),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_committed_runs_read_and_describe_the_hertz_problem() {
+    let peer = getfem::load().unwrap();
+    assert!(peer.runs.len() >= 6, "{} runs", peer.runs.len());
+    assert!(peer.comment.contains("GetFEM"), "{}", peer.comment);
+    assert!(!peer.version.is_empty() && peer.date.len() == 10);
+    // the same problem as ours: p₀ and a within a few percent of the
+    // reference of the chapter, on the finest Q2 mesh
+    let finest = peer
+        .runs
+        .iter()
+        .filter(|r| r.degree == 2)
+        .max_by_key(|r| r.elements)
+        .unwrap();
+    let hertz = common::hertz(2, 8, Default::default());
+    let s = solve(&hertz, &SolverOptions::default()).unwrap();
+    let m = PressureProfile::dense(&hertz, &s.full).unwrap().measures(0);
+    assert!(
+        (finest.p0 / m.p0 - 1.0).abs() < 0.05,
+        "{} {}",
+        finest.p0,
+        m.p0
+    );
+    assert!((finest.half_width / m.half_width - 1.0).abs() < 0.1);
+    // sorted by element, then mesh
+    assert!(peer
+        .runs
+        .windows(2)
+        .all(|w| (w[0].degree, w[0].elements) < (w[1].degree, w[1].elements)));
+}
+
+#[test]
+fn bad_data_is_refused_naming_line_column_and_value() {
+    let ok = format!("# a comment\n{HEADER}\n{LINE}\n");
+    assert_eq!(getfem::parse(&ok).unwrap().runs.len(), 1);
+
+    let (field, value) = refused(&ok.replace("2.4e+06", "two"));
+    assert_eq!(field, format!("{}: line 3, column `p0`", getfem::CSV));
+    assert_eq!(value, "two");
+
+    let (field, value) = refused(&ok.replace(",true,", ",false,"));
+    assert!(field.ends_with("line 3, column `converged`"), "{field}");
+    assert_eq!(value, "false");
+
+    let (field, _) = refused(&ok.replace("half_width,", "width,"));
+    assert!(field.ends_with("line 2, column `half_width`"), "{field}");
+
+    let (field, value) = refused(&ok.replace(",13,", ",13.5,"));
+    assert!(field.ends_with("column `newton_iterations`"), "{field}");
+    assert_eq!(value, "13.5");
+
+    let (field, _) = refused(&ok.replace(",Q2,", ",Q3,"));
+    assert!(field.ends_with("column `element`"), "{field}");
+
+    let (field, _) = refused(&ok.replace(",2026-11-30\n", "\n"));
+    assert!(field.ends_with("line 3, column `(all)`"), "{field}");
+
+    let (field, _) = refused(&ok.replace("0.0842", "NaN"));
+    assert!(field.ends_with("column `seconds`"), "{field}");
+
+    refused(&format!("{HEADER}\n"));
+}
+
+/// GetFEM's p₀ estimator on our solutions measures what ours measures:
+/// the two differ only by where they sample (σ_n at Gauss points against
+/// the dense profile of the Nitsche bracket), so they agree within a few
+/// percent on a coarse mesh and come closer as the mesh is refined.
+#[test]
+fn the_peer_p0_estimator_measures_what_ours_measures() {
+    let offset = |n: usize| {
+        let problem = common::hertz(2, n, Default::default());
+        let s = solve(&problem, &SolverOptions::default()).unwrap();
+        let ours = Reference::new(&problem, &s.u, &s.full).unwrap().measures;
+        let p0 = getfem::peak_pressure(&problem, &s.full).unwrap();
+        (p0 / ours.p0 - 1.0).abs()
+    };
+    let (coarse, fine) = (offset(16), offset(32));
+    assert!(coarse < 0.03, "16²: {coarse}");
+    assert!(fine < coarse, "32²: {fine}, 16²: {coarse}");
+}
