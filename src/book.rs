@@ -33,10 +33,12 @@ chapters! {
     correction => "correction.md",
     taylor => "taylor.md",
     hertz => "hertz.md",
+    two_cylinders => "two_cylinders.md",
     iga_vs_fem => "iga_vs_fem.md",
     error_vs_time => "error_vs_time.md",
     solvers => "solvers.md",
     stability => "stability.md",
+    penalty_study => "penalty_study.md",
     scenes => "scenes.md",
     reliability => "reliability.md",
 }

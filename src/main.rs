@@ -6,13 +6,15 @@
 //! large for the memory budget, an output directory that cannot take the
 //! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
 //! by SIGINT / SIGTERM (no output written). Every error is one line on
-//! stderr starting with `error:`.
+//! stderr starting with `error:`. A run or check whose contact penalty lies
+//! below the stability bound succeeds, with one `warning:` line on stderr
+//! per contact pair concerned.
 
 use clap::{Parser, Subcommand};
 use iga_contact::report::atomic::{self, OutputSet};
 use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
 use iga_contact::resources::{parse_size, Budget};
-use iga_contact::scene::Scene;
+use iga_contact::scene::{PenaltyWarning, Scene};
 use iga_contact::Error;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::Write;
@@ -173,7 +175,23 @@ fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> R
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         Path::new("out").join(stem)
     });
-    let report = scene.run_within(&out, &budget).map_err(fail)?;
+    let report = match scene.run_within(&out, &budget) {
+        Ok(report) => report,
+        Err(e) => {
+            // A failed solve has no active set to judge; where the bodies
+            // first touch tells whether a penalty below its bound may be why.
+            if matches!(
+                e,
+                Error::NotConverged { .. } | Error::Singular(_) | Error::Floating(_)
+            ) {
+                if let Ok(c) = scene.check(&budget) {
+                    warn(scene_path, &c.penalty_warnings);
+                }
+            }
+            return Err(fail(e));
+        }
+    };
+    warn(scene_path, &report.penalty_warnings);
     let place = if report.files.is_empty() {
         String::new()
     } else {
@@ -188,8 +206,22 @@ fn check(scene_path: &Path, max_memory: Option<String>) -> Result<(), Failure> {
     let budget = budget(max_memory)?;
     let scene = Scene::load(scene_path).map_err(fail)?;
     let report = scene.check(&budget).map_err(fail)?;
+    warn(scene_path, &report.penalty_warnings);
     println!("{}: {report}", scene_path.display());
     Ok(())
+}
+
+/// One `warning:` line on stderr per pair whose penalty is below its
+/// stability bound: the run goes on (the solution may still be right), but
+/// the user is told, with what to change.
+fn warn(scene_path: &Path, warnings: &[PenaltyWarning]) {
+    for w in warnings {
+        eprintln!(
+            "warning: {}: {}",
+            scene_path.display(),
+            one_line(&w.to_string())
+        );
+    }
 }
 
 fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {

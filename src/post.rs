@@ -473,34 +473,89 @@ mod tests {
     }
 }
 
-/// The stability of the penalty of one pair at a solution: how many contact
-/// points have γ below the bound under which the θ-family loses coercivity
+/// The stability of the penalty of one pair: how many contact points have γ
+/// below the bound under which the θ-family loses coercivity
 /// ([`crate::contact::penalty::stability_bound`] of the point's slave
-/// element), in all and among the active points (P ≤ 0).
+/// element), in all and among the *active* points — those with P ≤ 0 at a
+/// solution ([`penalty_stability`]) or, before any solve, those where the
+/// bodies first touch ([`first_touch_stability`]) — and how far below.
 ///
 /// Below the bound, the discrete problem restricted to an active set need
 /// not be coercive, so a converged solution need not be the only one: two
 /// solvers can reach different "converged" answers. Points below the bound
 /// that stay inactive do not enter the solution's tangent.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PenaltyStability {
     pub points: usize,
     pub below: usize,
+    /// The active points (P ≤ 0, or first touch).
+    pub active: usize,
     pub active_below: usize,
+    /// The smallest γ / bound over the active points whose bound is
+    /// positive; `None` if there is none (no active point, or θ = −1,
+    /// whose bound is 0).
+    pub min_active_ratio: Option<f64>,
 }
 
-/// [`PenaltyStability`] of every pair at the displacement `full`.
-pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStability> {
-    let mut out = vec![PenaltyStability::default(); problem.pairs.len()];
-    for cp in &problem.points {
+impl PenaltyStability {
+    /// The penalty factor that would lift every active point to its bound:
+    /// `factor` / [`min_active_ratio`](Self::min_active_ratio), where
+    /// `factor` is the pair's present one (γ is proportional to it, for the
+    /// empirical and the sharp penalty alike). `None` when no active point
+    /// is below the bound.
+    pub fn factor_needed(&self, factor: f64) -> Option<f64> {
+        self.min_active_ratio
+            .filter(|&r| r < 1.0 && self.active_below > 0)
+            .map(|r| factor / r)
+    }
+}
+
+/// [`PenaltyStability`] of every pair of `points` (`pairs` pairs), the
+/// active points being those for which `active` holds.
+pub fn stability_of(
+    points: &[ContactPoint],
+    pairs: usize,
+    active: impl Fn(&ContactPoint) -> bool,
+) -> Vec<PenaltyStability> {
+    let mut out = vec![PenaltyStability::default(); pairs];
+    for cp in points {
         let s = &mut out[cp.pair];
         s.points += 1;
-        if cp.below_stability_bound() {
-            s.below += 1;
-            if cp.p(full) <= 0.0 {
-                s.active_below += 1;
+        let bound = crate::contact::penalty::stability_bound(cp.trace_constant, cp.theta);
+        let below = cp.below_stability_bound();
+        s.below += usize::from(below);
+        if active(cp) {
+            s.active += 1;
+            s.active_below += usize::from(below);
+            if bound > 0.0 {
+                let r = cp.gamma / bound;
+                s.min_active_ratio = Some(s.min_active_ratio.map_or(r, |m: f64| m.min(r)));
             }
         }
     }
     out
+}
+
+/// [`PenaltyStability`] of every pair at the displacement `full`: the
+/// active points are those with P(u) ≤ 0.
+pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStability> {
+    stability_of(&problem.points, problem.pairs.len(), |cp| cp.p(full) <= 0.0)
+}
+
+/// [`PenaltyStability`] of every pair before solving: the active points
+/// are those where the bodies first touch, the points of least initial gap
+/// g₀ of their pair (to within 10⁻⁶ of the pair's range of g₀, so that a
+/// flat contact counts all its points). Contact begins there, whatever the
+/// load; the points far from it (such as the degenerate corner of the
+/// nine-point disk) touch only under a load that closes their gap.
+pub fn first_touch_stability(points: &[ContactPoint], pairs: usize) -> Vec<PenaltyStability> {
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); pairs];
+    for cp in points {
+        let r = &mut range[cp.pair];
+        *r = (r.0.min(cp.g0), r.1.max(cp.g0));
+    }
+    stability_of(points, pairs, |cp| {
+        let (lo, hi) = range[cp.pair];
+        cp.g0 <= lo + 1e-6 * (hi - lo)
+    })
 }

@@ -29,16 +29,16 @@
 //! ```
 
 use crate::assembly::Load;
-use crate::contact::{contact_points, ContactPair, Master, Nitsche, Theta};
+use crate::contact::{contact_points, ContactPair, Master, Nitsche, Penalty, Theta};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
 use crate::material::Material;
 use crate::nurbs::{KnotVector, NurbsPatch, Side};
-use crate::post::{self, PressureProfile};
+use crate::post::{self, PenaltyStability, PressureProfile};
 use crate::problem::Problem;
 use crate::report::atomic::OutputSet;
-use crate::report::history::history_table;
+use crate::report::history::history_table_noted;
 use crate::report::table::{Column, Format, Table, Unit};
 use crate::report::{plot, vtu};
 use crate::resources::{human_bytes, human_count, BodySize, Budget, Estimate, Factoring, PairSize};
@@ -314,6 +314,9 @@ pub struct RunReport {
     pub contact_force: [f64; 2],
     /// Resultant of the external loads (computed only for the summary).
     pub applied_force: Option<[f64; 2]>,
+    /// The pairs whose penalty lies below the stability bound at an
+    /// active contact point of the solution.
+    pub penalty_warnings: Vec<PenaltyWarning>,
     /// Files written (committed together), sorted by name.
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
@@ -382,6 +385,103 @@ struct PairSummary {
     zones: usize,
     /// Force of the master on the slave.
     contact_force: [f64; 2],
+    /// Active contact points whose penalty γ lies below the stability bound
+    /// of the pair's θ ([`post::penalty_stability`]); 0 is the safe answer.
+    penalty_below_bound_points: usize,
+    /// The smallest γ / bound over the active points (below 1: unstable);
+    /// absent when no active point has a positive bound (θ = −1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_penalty_ratio: Option<f64>,
+}
+
+/// A contact pair whose penalty γ lies below the stability bound of its θ
+/// ([`crate::contact::penalty::stability_bound`]) at some of the points
+/// that carry the contact: the active points of a solution
+/// ([`Scene::run`]), or, before solving, the points where the bodies first
+/// touch ([`Scene::check`]). There the discrete problem need not be
+/// coercive: the iteration may fail, or different solvers may reach
+/// different "converged" solutions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PenaltyWarning {
+    /// Index of the pair (`contact[k]`).
+    pub pair: usize,
+    /// The pair in words: slave side and master.
+    pub label: String,
+    pub theta: Theta,
+    pub penalty: Penalty,
+    /// The pair's `penalty_factor`.
+    pub factor: f64,
+    pub stability: PenaltyStability,
+    /// True: counted at a solution's active points; false: at first touch.
+    pub at_solution: bool,
+}
+
+impl PenaltyWarning {
+    /// The warnings of every pair of `scene` whose `stability` has active
+    /// points below the bound.
+    fn of(scene: &Scene, stability: &[PenaltyStability], at_solution: bool) -> Vec<Self> {
+        stability
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.active_below > 0)
+            .map(|(k, s)| {
+                let c = &scene.contacts[k];
+                Self {
+                    pair: k,
+                    label: scene.pair_label(k),
+                    theta: c.nitsche.theta,
+                    penalty: c.nitsche.penalty,
+                    factor: c.nitsche.penalty_factor,
+                    stability: *s,
+                    at_solution,
+                }
+            })
+            .collect()
+    }
+
+    /// A short note for the iteration history.
+    fn event(&self) -> String {
+        format!(
+            "penalty below bound: contact[{}], {} points",
+            self.pair, self.stability.active_below
+        )
+    }
+}
+
+impl fmt::Display for PenaltyWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = &self.stability;
+        let k = self.pair;
+        let where_ = if self.at_solution {
+            "active contact points of the solution"
+        } else {
+            "contact points where the bodies first touch"
+        };
+        write!(
+            f,
+            "contact[{k}] ({}): the penalty is below the stability bound of θ = {} at {} of {} {where_}",
+            self.label, self.theta, s.active_below, s.active
+        )?;
+        if let Some(r) = s.min_active_ratio {
+            write!(f, " (smallest γ/bound {r:.3})")?;
+        }
+        write!(
+            f,
+            ", so the discrete problem may be unstable and its solution not unique; "
+        )?;
+        let factor = format!("contact[{k}].nitsche.penalty_factor");
+        let needed = s
+            .factor_needed(self.factor)
+            .map(|x| format!(" above {x:.3}"))
+            .unwrap_or_default();
+        match self.penalty {
+            Penalty::Empirical => write!(
+                f,
+                "raise {factor}{needed}, or set contact[{k}].nitsche.penalty = \"sharp\" (with a factor above 1)"
+            ),
+            Penalty::Sharp => write!(f, "raise {factor} (the safety factor over the bound){needed}"),
+        }
+    }
 }
 
 /// `opts` as a TOML table, saturating integers beyond TOML's i64 range.
@@ -889,6 +989,18 @@ impl Scene {
         self
     }
 
+    /// Contact pair `k` in words, for messages: `disk.eta_min on a rigid
+    /// segment`, `upper.eta_min on lower.eta_max`.
+    fn pair_label(&self, k: usize) -> String {
+        let c = &self.contacts[k];
+        let master = match (&c.master.rigid_segment, &c.master.body, c.master.side) {
+            (Some(_), _, _) => "a rigid segment".to_string(),
+            (None, Some(b), Some(side)) => format!("{b}.{}", side.name()),
+            _ => "its master".to_string(),
+        };
+        format!("{}.{} on {master}", c.slave, c.slave_side.name())
+    }
+
     /// Index of each body by name.
     fn body_index(&self) -> HashMap<&str, usize> {
         self.bodies
@@ -1148,6 +1260,9 @@ pub struct CheckReport {
     pub contact_points: usize,
     /// The resource estimate the budget was checked against.
     pub estimate: Estimate,
+    /// The pairs whose penalty lies below the stability bound where the
+    /// bodies first touch.
+    pub penalty_warnings: Vec<PenaltyWarning>,
 }
 
 impl fmt::Display for CheckReport {
@@ -1465,11 +1580,13 @@ impl Scene {
         let d = self.discretise()?;
         let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
+        let stability = post::first_touch_stability(&points, d.pairs.len());
         Ok(CheckReport {
             bodies: d.bodies.len(),
             dofs: d.map.n_free(),
             contact_points: points.len(),
             estimate,
+            penalty_warnings: PenaltyWarning::of(self, &stability, false),
         })
     }
 
@@ -1504,6 +1621,8 @@ impl Scene {
         let full = &solution.full;
         let contact_force = post::contact_resultant(&problem, full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
+        let stability = post::penalty_stability(&problem, full);
+        let penalty_warnings = PenaltyWarning::of(self, &stability, true);
         let history = &solution.history;
         let title = self.title.as_deref().unwrap_or("scene");
 
@@ -1520,6 +1639,8 @@ impl Scene {
                     contact_force,
                     applied_force,
                     active_points,
+                    stability: &stability,
+                    warnings: &penalty_warnings,
                 };
                 self.stage_outputs(&mut set, &problem, &solution, &outputs)?;
                 set.commit()?
@@ -1533,6 +1654,7 @@ impl Scene {
             contact_points: problem.points.len(),
             contact_force,
             applied_force,
+            penalty_warnings,
             files,
             seconds: start.elapsed().as_secs_f64(),
             warnings: solution.warnings.clone(),
@@ -1552,6 +1674,8 @@ impl Scene {
             contact_force,
             applied_force,
             active_points,
+            stability,
+            warnings,
         } = *out;
         let o = &self.output;
         let full = &solution.full;
@@ -1588,7 +1712,8 @@ impl Scene {
             plot::line_chart(set.dir().join(files::FIGURE), &axes, &series)?;
         }
         if o.iterations {
-            let table = history_table(history, Unit::None, Unit::None)?;
+            let notes: Vec<String> = warnings.iter().map(PenaltyWarning::event).collect();
+            let table = history_table_noted(history, Unit::None, Unit::None, &notes)?;
             set.stage(files::ITERATIONS, table.to_csv().as_bytes())?;
         }
         if let (true, Some(profile)) = (o.pressure_profile, &profile) {
@@ -1615,6 +1740,8 @@ impl Scene {
                         half_width: no_negative_zero(m.half_width),
                         zones: m.zones,
                         contact_force: f.map(no_negative_zero),
+                        penalty_below_bound_points: stability[k].active_below,
+                        min_penalty_ratio: stability[k].min_active_ratio,
                     }
                 })
                 .collect();
@@ -1645,6 +1772,8 @@ struct Outputs<'a> {
     contact_force: [f64; 2],
     applied_force: Option<[f64; 2]>,
     active_points: usize,
+    stability: &'a [PenaltyStability],
+    warnings: &'a [PenaltyWarning],
 }
 
 /// The relative residual a converged run ends with; a run that needed no

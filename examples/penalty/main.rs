@@ -1,25 +1,41 @@
 //! The penalty, measured: the program behind the chapter "The penalty,
 //! measured". It compares the paper's empirical penalty (11) with the sharp
 //! bound below which the θ-family loses coercivity, element by element, for
-//! degrees 1 to 5 on the Hertz disk, the Taylor blocks and two elastic
-//! cylinders. Output: `book/src/generated/penalty/`.
+//! degrees 1 to 5 on four set-ups; solves with the sharp penalty as an
+//! option; and maps the small-penalty regime where the solvers part ways.
+//! The disk on an elastic block of rising stiffness is the heavy program
+//! `penalty_contrast`. Output: `book/src/generated/penalty/`.
 //!
 //! Run it with `cargo run --release --example penalty`.
 
+#[path = "../common/penalty.rs"]
+mod common;
+
+use common::{hertz, measure};
 use iga_contact::contact::penalty::stability_bound;
+use iga_contact::contact::{ContactPoint, Penalty, Theta};
 use iga_contact::error::Result;
+use iga_contact::post::{penalty_stability, relative};
 use iga_contact::problem::Problem;
 use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
-use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::solver::{SolverKind, SolverOptions};
 
 // ANCHOR: setups
 /// The degrees compared; p = 1 is the Lagrange Q1 mesh (a NURBS circle
 /// needs p ≥ 2).
 const DEGREES: [usize; 5] = [1, 2, 3, 4, 5];
-/// Elements per direction of the disks' meshes.
+/// Elements per direction of the slave bodies' meshes.
 const MESHES: [usize; 2] = [4, 16];
+/// The set-ups, in the order of the tables.
+const SETUPS: [&str; 4] = [
+    "Hertz disk",
+    "Taylor blocks",
+    "two cylinders",
+    "block on floor",
+];
 
 fn refine(p: usize, elements: [usize; 2]) -> RefineSpec {
     match p {
@@ -28,10 +44,11 @@ fn refine(p: usize, elements: [usize; 2]) -> RefineSpec {
     }
 }
 
-/// The three set-ups, each with degree `p` and `n` elements per direction
+/// The four set-ups, each with degree `p` and `n` elements per direction
 /// on its slave body (the Taylor blocks keep their 4×2 and 3×2 pattern,
-/// scaled by n/4).
-fn setups(p: usize, n: usize) -> Result<[(&'static str, Problem); 3]> {
+/// scaled by n/4; the block on the floor, 1 m × 0.5 m, has square
+/// elements).
+fn setups(p: usize, n: usize) -> Result<[Problem; 4]> {
     let m = (n / 4).max(1);
     let hertz = Scene::shipped("hertz.toml")?.refined("disk", refine(p, [n, n]))?;
     let taylor = Scene::shipped("taylor.toml")?
@@ -40,42 +57,50 @@ fn setups(p: usize, n: usize) -> Result<[(&'static str, Problem); 3]> {
     let cylinders = Scene::shipped("two_cylinders.toml")?
         .refined("upper", refine(p, [n, n]))?
         .refined("lower", refine(p, [2 * n, 2 * n]))?;
+    let block = Scene::shipped("minimal.toml")?.refined("block", refine(p, [n, n / 2]))?;
     Ok([
-        ("Hertz disk", hertz.build()?),
-        ("Taylor blocks", taylor.build()?),
-        ("two cylinders", cylinders.build()?),
+        hertz.build()?,
+        taylor.build()?,
+        cylinders.build()?,
+        block.build()?,
     ])
 }
 // ANCHOR_END: setups
 
 // ANCHOR: ratios
-/// γ₍₁₁₎ over the trace constant C_T of every contact point: the paper's
+/// γ₍₁₁₎ over the trace constant C_T of a contact point: the paper's
 /// penalty in units of the bound of θ = 1 (θ = 0 needs a quarter of it).
-/// Returns the ratio where the bodies first touch (least initial gap), and
-/// the smallest and largest over the whole contact side.
-fn ratios(problem: &Problem) -> (f64, f64, f64) {
-    let ratio = |cp: &iga_contact::contact::ContactPoint| {
-        cp.gamma / stability_bound(cp.trace_constant, 1.0)
-    };
-    let first = problem
+fn ratio(cp: &ContactPoint) -> f64 {
+    cp.gamma / stability_bound(cp.trace_constant, 1.0)
+}
+
+/// The point where the bodies first touch: the least initial gap.
+fn first_touch(problem: &Problem) -> &ContactPoint {
+    problem
         .points
         .iter()
         .min_by(|a, b| a.g0.total_cmp(&b.g0))
-        .map_or(f64::NAN, ratio);
-    let (lo, hi) = problem
+        .expect("every set-up has contact points")
+}
+
+/// The point of smallest ratio on the whole contact side.
+fn smallest(problem: &Problem) -> &ContactPoint {
+    problem
         .points
         .iter()
-        .map(ratio)
-        .fold((f64::INFINITY, 0.0f64), |(l, h), r| (l.min(r), h.max(r)));
-    (first, lo, hi)
+        .min_by(|a, b| ratio(a).total_cmp(&ratio(b)))
+        .expect("every set-up has contact points")
 }
 // ANCHOR_END: ratios
 
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("penalty")?;
 
+    // ---------------------------------------------------------------
+    // 1. The empirical penalty against the sharp bound, per degree.
+    // ---------------------------------------------------------------
     // ANCHOR: table
-    let mut table = Table::new(vec![
+    let mut long = Table::new(vec![
         Column::plain("setup", "set-up"),
         Column::plain("degree", "p"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
@@ -86,39 +111,63 @@ fn main() -> Result<()> {
             Format::Fixed(3),
         ),
         Column::new("smallest", "smallest", Unit::None, Format::Sci(1)),
-        Column::new("largest", "largest", Unit::None, Format::Fixed(3)),
     ]);
-    let mut at_first: Vec<(&str, usize, f64)> = Vec::new();
-    for p in DEGREES {
-        for n in MESHES {
-            for (name, problem) in setups(p, n)? {
-                let (first, lo, hi) = ratios(&problem);
-                table.push(vec![
-                    name.into(),
+    // [set-up][mesh][degree] → ratio at first touch
+    let mut first = [[[0.0; 5]; 2]; 4];
+    let mut corner = Vec::new(); // Hertz 16²: (first-touch point, smallest point) per degree
+    for (ip, p) in DEGREES.into_iter().enumerate() {
+        for (im, n) in MESHES.into_iter().enumerate() {
+            for (is, problem) in setups(p, n)?.iter().enumerate() {
+                let (f, s) = (first_touch(problem), smallest(problem));
+                first[is][im][ip] = ratio(f);
+                long.push(vec![
+                    SETUPS[is].into(),
                     p.into(),
                     n.into(),
-                    first.into(),
-                    lo.into(),
-                    hi.into(),
+                    ratio(f).into(),
+                    ratio(s).into(),
                 ])?;
-                if n == 16 {
-                    at_first.push((name, p, first));
+                if is == 0 && n == 16 {
+                    corner.push((f.clone(), s.clone()));
                 }
             }
         }
     }
-    chapter.table("ratios", &table)?;
+    chapter.csv("ratios", &long)?;
+    let mut wide = Table::new(
+        [
+            Column::plain("setup", "set-up"),
+            Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        ]
+        .into_iter()
+        .chain(
+            ["p1", "p2", "p3", "p4", "p5"]
+                .iter()
+                .zip(["p = 1", "p = 2", "p = 3", "p = 4", "p = 5"])
+                .map(|(&key, header)| Column::new(key, header, Unit::None, Format::Fixed(2))),
+        )
+        .collect(),
+    );
+    for (is, name) in SETUPS.iter().enumerate() {
+        for (im, n) in MESHES.into_iter().enumerate() {
+            let mut row: Vec<Cell> = vec![(*name).into(), n.into()];
+            row.extend(first[is][im].iter().map(|&r| Cell::from(r)));
+            wide.push(row)?;
+        }
+    }
+    chapter.table("first_touch", &wide)?;
     // ANCHOR_END: table
 
     // The ratio where contact begins, against the degree, with the bounds
     // of θ = 1 (ratio 1) and θ = 0 (ratio ¼).
-    let mut series: Vec<Series> = ["Hertz disk", "Taylor blocks", "two cylinders"]
+    let mut series: Vec<Series> = SETUPS
         .iter()
-        .map(|&name| {
-            let pts = at_first
+        .enumerate()
+        .map(|(is, &name)| {
+            let pts = DEGREES
                 .iter()
-                .filter(|r| r.0 == name)
-                .map(|r| (r.1 as f64, r.2))
+                .zip(first[is][1])
+                .map(|(&p, r)| (p as f64, r))
                 .collect();
             Series::line(name, pts).with_markers()
         })
@@ -141,25 +190,238 @@ fn main() -> Result<()> {
 
     // ANCHOR: facts
     let f = chapter.facts();
-    for (name, key) in [
-        ("Hertz disk", "hertz"),
-        ("Taylor blocks", "taylor"),
-        ("two cylinders", "cylinders"),
-    ] {
-        let mine: Vec<f64> = at_first
-            .iter()
-            .filter(|r| r.0 == name)
-            .map(|r| r.2)
-            .collect();
-        let (lo, hi) = mine
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(l, h), &r| (l.min(r), h.max(r)));
+    for (is, key) in ["hertz", "taylor", "cylinders", "block"].iter().enumerate() {
+        let mine = first[is][1];
+        let lo = mine.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = mine.iter().copied().fold(0.0, f64::max);
         f.number(&format!("{key}_first_min"), lo, Format::Fixed(2))?;
         f.number(&format!("{key}_first_max"), hi, Format::Fixed(2))?;
-        for (p, r) in DEGREES.iter().zip(&mine) {
-            f.number(&format!("{key}_first_p{p}"), *r, Format::Fixed(2))?;
+        // the bound of θ = 0 in the same units: 4 γ / C_T
+        f.number(
+            &format!("{key}_first_min_theta0"),
+            4.0 * lo,
+            Format::Fixed(2),
+        )?;
+        for (p, r) in DEGREES.iter().zip(mine) {
+            f.number(&format!("{key}_first_p{p}"), r, Format::Fixed(2))?;
         }
     }
+    let spread = |is: usize| {
+        DEGREES
+            .iter()
+            .enumerate()
+            .map(|(ip, _)| relative(first[is][0][ip], first[is][1][ip]).abs())
+            .fold(0.0, f64::max)
+    };
+    f.number("hertz_mesh_spread", spread(0), Format::Percent(0))?;
     // ANCHOR_END: facts
+
+    // ANCHOR: corner
+    // The degenerate corner of the nine-point disk: the Jacobian of the
+    // disk's map vanishes at the end of the slave arc, so the normal stress
+    // of the last element's shape functions grows without bound there.
+    let (f2, s2) = &corner[1]; // p = 2, 16²
+    f.number("corner_ratio_p2", ratio(s2), Format::Pow10(0))?;
+    f.number(
+        "corner_ct_growth_p2",
+        s2.trace_constant / f2.trace_constant,
+        Format::Pow10(0),
+    )?;
+    f.number("corner_gap_mm", s2.g0 * 1e3, Format::Fixed(0))?;
+    f.number(
+        "corner_angle_deg",
+        (s2.x[0] / 0.2).asin().to_degrees(),
+        Format::Fixed(0),
+    )?;
+    let worst = corner
+        .iter()
+        .map(|(_, s)| ratio(s))
+        .fold(f64::INFINITY, f64::min);
+    f.number("corner_ratio_min", worst, Format::Pow10(0))?;
+    // ANCHOR_END: corner
+
+    // ---------------------------------------------------------------
+    // 2. The sharp penalty as an option.
+    // ---------------------------------------------------------------
+    // ANCHOR: sharp
+    let mut sharp = Table::new(vec![
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        Column::plain("theta", "θ"),
+        Column::plain("penalty", "penalty"),
+        Column::new("gamma_over_bound", "γ/bound", Unit::None, Format::Fixed(2)),
+        Column::plain("iterations", "its"),
+        Column::new(
+            "p0_vs_paper",
+            "p₀ vs (11), θ = 0",
+            Unit::None,
+            Format::SignedPercent(2),
+        ),
+        Column::plain("below", "below"),
+    ]);
+    let choices = [
+        ("(11)", Penalty::Empirical, 1.0),
+        ("sharp ×1", Penalty::Sharp, 1.0),
+        ("sharp ×2", Penalty::Sharp, 2.0),
+    ];
+    let mut theta_spread = [[0.0f64; 3]; 2]; // [mesh][choice]: spread of p₀ over θ
+    for (im, n) in [16usize, 32].into_iter().enumerate() {
+        let paper = measure(&hertz(n, |_| ())?, &SolverOptions::default())?
+            .expect("the paper's setting converges")
+            .p0;
+        for (ic, &(label, penalty, factor)) in choices.iter().enumerate() {
+            let mut p0s = Vec::new();
+            for theta in Theta::ALL {
+                let problem = hertz(n, |x| {
+                    x.theta = theta;
+                    x.penalty = penalty;
+                    x.penalty_factor = factor;
+                })?;
+                let cp = first_touch(&problem);
+                // θ = −1 has no bound: the column shows γ over the bound of θ = 0
+                let bound = stability_bound(cp.trace_constant, theta.value().max(0.0));
+                let o = measure(&problem, &SolverOptions::default())?;
+                let (its, p0, below): (Cell, Cell, Cell) = match &o {
+                    Ok(o) => {
+                        p0s.push(o.p0);
+                        let st = penalty_stability(&problem, &o.solution.full)[0];
+                        (
+                            o.solution.history.len().into(),
+                            relative(o.p0, paper).into(),
+                            st.active_below.into(),
+                        )
+                    }
+                    Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty),
+                };
+                sharp.push(vec![
+                    n.into(),
+                    theta.to_string().into(),
+                    label.into(),
+                    (cp.gamma / bound).into(),
+                    its,
+                    p0,
+                    below,
+                ])?;
+            }
+            let lo = p0s.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = p0s.iter().copied().fold(0.0, f64::max);
+            theta_spread[im][ic] = (hi - lo) / paper;
+        }
+    }
+    chapter.table("sharp", &sharp)?;
+    let f = chapter.facts();
+    f.number(
+        "theta_spread_empirical_16",
+        theta_spread[0][0],
+        Format::Percent(1),
+    )?;
+    f.number(
+        "theta_spread_sharp2_16",
+        theta_spread[0][2],
+        Format::Percent(1),
+    )?;
+    f.number(
+        "theta_spread_empirical_32",
+        theta_spread[1][0],
+        Format::Percent(1),
+    )?;
+    f.number(
+        "theta_spread_sharp2_32",
+        theta_spread[1][2],
+        Format::Percent(1),
+    )?;
+    // ANCHOR_END: sharp
+
+    // ---------------------------------------------------------------
+    // 4. Small penalties: where the solution stops being unique.
+    // ---------------------------------------------------------------
+    // ANCHOR: small
+    const FACTORS: [f64; 6] = [1e-4, 1e-3, 1e-2, 1e-1, 0.3, 1.0];
+    let solvers = [
+        ("bfgs", SolverOptions::default()),
+        ("newton", SolverOptions::with_kind(SolverKind::Newton)),
+        ("paper", SolverOptions::paper()),
+    ];
+    let paper_setting = measure(&hertz(8, |_| ())?, &SolverOptions::default())?
+        .expect("the paper's setting converges")
+        .p0;
+    let mut small = Table::new(vec![
+        Column::plain("theta", "θ"),
+        Column::new("factor", "factor", Unit::None, Format::Sci(0)),
+        Column::new("ratio", "γ/bound", Unit::None, Format::Sci(1)),
+        Column::new("p0_bfgs", "BFGS", Unit::None, Format::SignedPercent(1)),
+        Column::new("p0_newton", "Newton", Unit::None, Format::SignedPercent(1)),
+        Column::new("p0_paper", "paper's", Unit::None, Format::SignedPercent(1)),
+        Column::plain("zones", "zones"),
+        Column::new("overlap", "overlap", Unit::Millimetre, Format::Fixed(3)),
+    ]);
+    let mut unique_from = [f64::INFINITY; 3];
+    for (it, theta) in Theta::ALL.into_iter().enumerate() {
+        for factor in FACTORS {
+            let problem = hertz(8, |x| {
+                x.theta = theta;
+                x.penalty_factor = factor;
+            })?;
+            let mut row: Vec<Cell> = vec![theta.to_string().into(), factor.into()];
+            let outcomes: Vec<_> = solvers
+                .iter()
+                .map(|(_, o)| measure(&problem, o))
+                .collect::<Result<_>>()?;
+            // the smallest γ/bound over the active points, and the largest
+            // overlap −g_n, of the first solver that converged
+            let first_ok = outcomes.iter().find_map(|o| o.as_ref().ok());
+            let (r, overlap) = match first_ok {
+                Some(o) => {
+                    let st = penalty_stability(&problem, &o.solution.full)[0];
+                    let overlap = problem
+                        .points
+                        .iter()
+                        .map(|cp| cp.normal_stress_and_jump(&o.solution.full).1 - cp.g0)
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    (
+                        st.min_active_ratio
+                            .map(Cell::from)
+                            .unwrap_or_else(|| "none".into()),
+                        Cell::from(overlap),
+                    )
+                }
+                None => (Cell::Empty, Cell::Empty),
+            };
+            row.push(r);
+            for o in &outcomes {
+                row.push(match o {
+                    Ok(o) => relative(o.p0, paper_setting).into(),
+                    Err(_) => "failed".into(),
+                });
+            }
+            let zones: Vec<String> = outcomes
+                .iter()
+                .map(|o| o.as_ref().map_or("–".to_string(), |o| o.zones.to_string()))
+                .collect();
+            row.push(zones.join(" / ").into());
+            row.push(overlap);
+            small.push(row)?;
+            // the solvers that converge agree (at least two, the same p₀ to
+            // 10⁻⁶); a solver that fails is shown in the table
+            let p0s: Vec<f64> = outcomes
+                .iter()
+                .filter_map(|o| o.as_ref().ok().map(|o| o.p0))
+                .collect();
+            let agree = p0s.len() >= 2 && p0s.iter().all(|&p| relative(p, p0s[0]).abs() < 1e-6);
+            if agree {
+                unique_from[it] = unique_from[it].min(factor);
+            } else {
+                unique_from[it] = f64::INFINITY;
+            }
+        }
+    }
+    chapter.table("small_penalty", &small)?;
+    let f = chapter.facts();
+    for (it, key) in ["theta1", "theta0", "theta_minus1"].iter().enumerate() {
+        match unique_from[it] {
+            v if v.is_finite() => f.number(&format!("{key}_agree_from"), v, Format::Pow10(0))?,
+            _ => f.text(&format!("{key}_agree_from"), "never")?,
+        }
+    }
+    // ANCHOR_END: small
     chapter.finish()
 }

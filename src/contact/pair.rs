@@ -5,7 +5,7 @@ use super::params::{Integration, Modulus, Nitsche, Penalty, Sides};
 use super::penalty::{
     empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
 };
-use super::projection::{closest_point, Projection};
+use super::projection::{along_normal, closest_point, Projection};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::nurbs::{NurbsCurve, Side};
@@ -354,11 +354,20 @@ fn make_point(
 ) -> Result<Option<ContactPoint>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
-    let (shape, _, len) = space
+    let (shape, own_normal, len) = space
         .side_shape(be, t)
         .map_err(|e| within(e, ip, &slave_side(pair, bodies)))?;
     let x = shape.x;
-    let pr: Projection = closest_point(master.curve(), x).map_err(|e| {
+    // The mirrored half of the unbiased form measures the gap of the other
+    // half: along its own normal, to the point of the other body on that
+    // line (see `along_normal`).
+    let mirrored = role == Role::Master;
+    let found = if mirrored {
+        along_normal(master.curve(), x, own_normal)
+    } else {
+        closest_point(master.curve(), x)
+    };
+    let pr: Projection = found.map_err(|e| {
         let what = match master {
             MasterGeometry::Rigid(_) => "the rigid master curve".to_string(),
             MasterGeometry::Body { body, side, .. } => format!(
@@ -392,7 +401,11 @@ fn make_point(
             (n, Some(mbe.length), Some((*body, el.cps.clone(), basis.r)))
         }
     };
-    let normal = [-n2[0], -n2[1]];
+    let normal = if mirrored {
+        own_normal
+    } else {
+        [-n2[0], -n2[1]]
+    };
     let g0 = (pr.point[0] - x[0]) * normal[0] + (pr.point[1] - x[1]) * normal[1];
     let gamma = empirical_penalty(
         PenaltyInputs {

@@ -116,8 +116,11 @@ pub enum Sides {
     #[default]
     Biased,
     /// Each body is the slave once, with half the weight (Chouly, Mlika &
-    /// Renard 2018): symmetric in the two bodies. A rigid master has only
-    /// one side, so there this is the biased form.
+    /// Renard 2018): symmetric in the two bodies. The mirrored half pairs
+    /// its points along their own normal
+    /// ([`super::projection::along_normal`]), so that both halves measure
+    /// one gap. A rigid master has only one side, so there this is the
+    /// biased form.
     Unbiased,
 }
 

@@ -101,3 +101,55 @@ pub fn closest_point(curve: &NurbsCurve, x: [f64; 2]) -> Result<Projection> {
         orthogonal,
     })
 }
+
+/// Where the line through `x` along the unit vector `n` meets `curve`,
+/// starting from the closest point (the nearest crossing on a curve that
+/// the line meets once near `x`).
+///
+/// The unbiased form pairs each point of its mirrored half this way: a
+/// point of the master side and the slave point whose closest point it is
+/// lie on one normal line, so both halves measure one gap function (the
+/// closest point from the master side would measure another along a
+/// tilted normal, and the two penalties would pull against each other).
+/// Newton on f(t) = (C(t) − x) × n, kept inside the parameter range;
+/// `orthogonal` is false where the line misses the curve.
+pub fn along_normal(curve: &NurbsCurve, x: [f64; 2], n: [f64; 2]) -> Result<Projection> {
+    let start = closest_point(curve, x)?;
+    let (lo, hi) = (curve.knots.first(), curve.knots.last());
+    let cross = |a: [f64; 2]| a[0] * n[1] - a[1] * n[0];
+    let mut t = start.t;
+    let mut hit = false;
+    for _ in 0..60 {
+        let (c, dc) = curve.point_and_tangent(t);
+        let f = cross(sub(c, x));
+        let scale = dc[0].hypot(dc[1]) * (hi - lo);
+        if f.abs() <= 1e-13 * scale.max(f64::MIN_POSITIVE) {
+            hit = true;
+            break;
+        }
+        let fp = cross(dc);
+        if fp == 0.0 || !fp.is_finite() {
+            break;
+        }
+        let tn = t - f / fp;
+        if !(lo..=hi).contains(&tn) {
+            break;
+        }
+        t = tn;
+    }
+    let (c, dc) = curve.point_and_tangent(t);
+    let len = dc[0].hypot(dc[1]);
+    if len.is_nan() || len <= 0.0 {
+        return Err(Error::Geometry(format!(
+            "cannot intersect the normal line at {x:?}: the curve is degenerate at t = {t}"
+        )));
+    }
+    let r = sub(c, x);
+    Ok(Projection {
+        t,
+        point: c,
+        tangent: [dc[0] / len, dc[1] / len],
+        distance: dot(r, r).sqrt(),
+        orthogonal: hit && start.orthogonal,
+    })
+}

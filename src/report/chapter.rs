@@ -95,6 +95,7 @@ pub const PROGRAMS: &[Program] = &[
     program("solvers", "solvers", Cost::Quick),
     program("solver_scaling", "solver_scaling", Cost::Heavy),
     program("penalty", "penalty", Cost::Quick),
+    program("penalty_contrast", "penalty_contrast", Cost::Heavy),
     program("stability", "stability", Cost::Quick),
     program("scenes", "scenes", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),

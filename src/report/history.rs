@@ -9,6 +9,19 @@ use crate::solver::history::History;
 /// the unit `force` and displacements in `length` (the book's benchmarks:
 /// N/m and m or mm; a scene's own units: [`Unit::None`]).
 pub fn history_table(h: &History, force: Unit, length: Unit) -> Result<Table> {
+    history_table_noted(h, force, length, &[])
+}
+
+/// [`history_table`] with `notes` added to the events of the last
+/// iteration: findings about the converged solution that the solver does
+/// not record itself (a penalty below its stability bound). A history
+/// without iterations has no row to carry them.
+pub fn history_table_noted(
+    h: &History,
+    force: Unit,
+    length: Unit,
+    notes: &[String],
+) -> Result<Table> {
     let mut t = Table::new(vec![
         Column::plain("iteration", "it."),
         Column::new("residual", "‖R‖", force, Format::Sci(2)),
@@ -18,8 +31,12 @@ pub fn history_table(h: &History, force: Unit, length: Unit) -> Result<Table> {
         Column::plain("active_points", "active"),
         Column::plain("events", "events"),
     ]);
-    for r in &h.rows {
-        let events: Vec<String> = r.events.iter().map(|e| e.to_string()).collect();
+    let last = h.rows.len().saturating_sub(1);
+    for (k, r) in h.rows.iter().enumerate() {
+        let mut events: Vec<String> = r.events.iter().map(|e| e.to_string()).collect();
+        if k == last {
+            events.extend(notes.iter().cloned());
+        }
         t.push(vec![
             r.iteration.into(),
             r.residual.into(),

@@ -1,0 +1,227 @@
+//! The penalty against its stability bound: a run or check whose penalty
+//! lies below the bound at the points that carry the contact warns (CLI:
+//! one `warning:` line naming the pair; `summary.toml`: per-pair fields;
+//! `iterations.csv`: an event), and one above it does not.
+
+use iga_contact::contact::penalty::stability_bound;
+use iga_contact::contact::{Penalty, Theta};
+use iga_contact::post::penalty_stability;
+use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::solver::solve;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_iga-contact");
+
+/// The shipped Hertz scene (8², p = 2) with θ = `theta`, the library's
+/// default solver (the paper's full-step BFGS diverges for θ = 1), and
+/// every output but the VTU file.
+fn hertz_text(theta: i32) -> String {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes/hertz.toml"),
+    )
+    .unwrap();
+    let (head, tail) = text.split_at(text.find("[solver]").unwrap());
+    let outputs = &tail[tail.find("[output]").unwrap()..];
+    format!("{head}{outputs}")
+        .replace(
+            "nitsche = { theta = 0,",
+            &format!("nitsche = {{ theta = {theta},"),
+        )
+        .replace("vtu = true", "vtu = false")
+}
+
+fn workdir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("penalty-{name}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn cli(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn warnings(o: &Output) -> Vec<String> {
+    String::from_utf8_lossy(&o.stderr)
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .map(str::to_string)
+        .collect()
+}
+
+fn summary_pair(dir: &Path) -> toml::Table {
+    let text = std::fs::read_to_string(dir.join("out/hertz/summary.toml")).unwrap();
+    let t: toml::Table = toml::from_str(&text).unwrap();
+    t["contact"].as_array().unwrap()[0]
+        .as_table()
+        .unwrap()
+        .clone()
+}
+
+#[test]
+fn run_warns_below_the_bound_and_not_above() {
+    // θ = 1 needs γ above the trace constant C_T, which (11) is not on the
+    // Hertz disk for p = 2; θ = 0 needs only C_T/4.
+    let below = workdir("run-below");
+    std::fs::write(below.join("hertz.toml"), hertz_text(1)).unwrap();
+    let o = cli(&below, &["run", "hertz.toml"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let w = warnings(&o);
+    assert_eq!(w.len(), 1, "{w:?}");
+    for part in [
+        "hertz.toml",
+        "contact[0]",
+        "disk.eta_min",
+        "θ = 1",
+        "active contact points",
+        "smallest γ/bound 0.",
+        "contact[0].nitsche.penalty_factor above",
+        "penalty = \"sharp\"",
+    ] {
+        assert!(w[0].contains(part), "{part:?} missing in {}", w[0]);
+    }
+    let pair = summary_pair(&below);
+    let n = pair["penalty_below_bound_points"].as_integer().unwrap();
+    assert!(n > 0);
+    assert!(pair["min_penalty_ratio"].as_float().unwrap() < 1.0);
+    assert!(w[0].contains(&format!("at {n} of ")), "{}", w[0]);
+    let history = std::fs::read_to_string(below.join("out/hertz/iterations.csv")).unwrap();
+    let last = history.lines().last().unwrap();
+    assert!(
+        last.contains(&format!("penalty below bound: contact[0], {n} points")),
+        "{last}"
+    );
+
+    let above = workdir("run-above");
+    std::fs::write(above.join("hertz.toml"), hertz_text(0)).unwrap();
+    let o = cli(&above, &["run", "hertz.toml"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let pair = summary_pair(&above);
+    assert_eq!(pair["penalty_below_bound_points"].as_integer(), Some(0));
+    assert!(pair["min_penalty_ratio"].as_float().unwrap() > 1.0);
+    let history = std::fs::read_to_string(above.join("out/hertz/iterations.csv")).unwrap();
+    assert!(!history.contains("penalty below bound"));
+}
+
+#[test]
+fn check_warns_where_the_bodies_first_touch() {
+    let dir = workdir("check");
+    for (theta, warns) in [(1, true), (0, false), (-1, false)] {
+        std::fs::write(dir.join("hertz.toml"), hertz_text(theta)).unwrap();
+        let o = cli(&dir, &["check", "hertz.toml"]);
+        assert_eq!(o.status.code(), Some(0));
+        let w = warnings(&o);
+        assert_eq!(w.len(), usize::from(warns), "θ = {theta}: {w:?}");
+        if warns {
+            assert!(w[0].contains("where the bodies first touch"), "{}", w[0]);
+        }
+    }
+    // the shipped scenes are all silent, at check and at run
+    for name in [
+        "hertz.toml",
+        "taylor.toml",
+        "two_cylinders.toml",
+        "disk_on_block.toml",
+    ] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("data/scenes")
+            .join(name);
+        let path = path.to_str().unwrap();
+        for args in [vec!["check", path], vec!["run", path, "--out", "out"]] {
+            let cmd = args[0];
+            let o = cli(&dir, &args);
+            assert_eq!(o.status.code(), Some(0), "{cmd} {name}");
+            assert!(warnings(&o).is_empty(), "{cmd} {name}: {:?}", warnings(&o));
+        }
+    }
+}
+
+/// The warning follows the bound, not the scene: scaling the penalty to a
+/// little below or above the factor it names turns it on or off, and its
+/// counts agree with the points' own γ and C_T.
+#[test]
+fn the_warning_follows_the_bound() {
+    let scene = |theta: Theta, penalty: Penalty, factor: f64| {
+        let mut s = Scene::shipped("hertz.toml")
+            .unwrap()
+            .refined("disk", RefineSpec::iga(2, [8, 8]))
+            .unwrap()
+            .with_nitsche(|n| {
+                n.theta = theta;
+                n.penalty = penalty;
+                n.penalty_factor = factor;
+            });
+        s.solver = Default::default();
+        s.output = Default::default();
+        s
+    };
+    let out = workdir("library");
+    let report = scene(Theta::Symmetric, Penalty::Empirical, 1.0)
+        .run(&out)
+        .unwrap();
+    assert_eq!(report.penalty_warnings.len(), 1);
+    let w = &report.penalty_warnings[0];
+    let needed = w.stability.factor_needed(1.0).unwrap();
+    assert!(needed > 1.0);
+
+    // the counts, recomputed from the points
+    let s = scene(Theta::Symmetric, Penalty::Empirical, 1.0);
+    let problem = s.build().unwrap();
+    let full = solve(&problem, &s.solver).unwrap().full;
+    let active: Vec<_> = problem
+        .points
+        .iter()
+        .filter(|cp| cp.p(&full) <= 0.0)
+        .collect();
+    let below = active
+        .iter()
+        .filter(|cp| cp.gamma < stability_bound(cp.trace_constant, 1.0))
+        .count();
+    let ratio = active
+        .iter()
+        .map(|cp| cp.gamma / stability_bound(cp.trace_constant, 1.0))
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(w.stability.active, active.len());
+    assert_eq!(w.stability.active_below, below);
+    assert_eq!(w.stability.min_active_ratio, Some(ratio));
+    assert_eq!(penalty_stability(&problem, &full)[0], w.stability);
+
+    // a little above the factor named: silent; a little below: warned
+    for (factor, warns) in [(1.2 * needed, false), (0.8 * needed, true)] {
+        let r = scene(Theta::Symmetric, Penalty::Empirical, factor)
+            .run(&out)
+            .unwrap();
+        assert_eq!(!r.penalty_warnings.is_empty(), warns, "factor {factor}");
+    }
+    // the sharp penalty sits on the bound with safety 1, below it with less
+    for (safety, warns) in [(1.0, false), (2.0, false), (0.5, true)] {
+        let r = scene(Theta::Symmetric, Penalty::Sharp, safety)
+            .run(&out)
+            .unwrap();
+        assert_eq!(!r.penalty_warnings.is_empty(), warns, "safety {safety}");
+        if warns {
+            let text = r.penalty_warnings[0].to_string();
+            assert!(text.contains("safety factor"), "{text}");
+        }
+    }
+    // θ = −1 has no bound: never warned, however small the penalty
+    let r = scene(Theta::Skew, Penalty::Empirical, 0.05)
+        .run(&out)
+        .unwrap();
+    assert!(r.penalty_warnings.is_empty());
+}
