@@ -317,6 +317,18 @@ const TYPED_ON_PURPOSE: &[(&str, &str, &str)] = &[
     ("nurbs.md", "0.2", "the radius of the half disk"),
     ("nurbs.md", "0.5", "a weight of the example basis"),
     ("penalty.md", "0.1", "a penalty factor"),
+    ("penalty_study.md", "0.2", "the block's size in its scene"),
+    ("penalty_study.md", "0.4", "the block's size in its scene"),
+    (
+        "penalty_study.md",
+        "2 %",
+        "the accuracy required of the contrast study",
+    ),
+    (
+        "penalty_study.md",
+        "8 iterations",
+        "the paper's rule, quoted",
+    ),
     ("stability.md", "0.3", "a Poisson ratio of the atlas"),
     (
         "stability.md",
