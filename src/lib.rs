@@ -4,6 +4,8 @@
 //! Data flows one way: [`nurbs`]/[`geometry`] → [`space`] → [`assembly`] →
 //! [`contact`] → [`solver`] → [`post`] → [`report`].
 
+#[cfg(feature = "allocator")]
+pub mod allocator;
 pub mod assembly;
 #[doc(hidden)]
 pub mod book;

@@ -16,73 +16,9 @@ use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
 use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::{PenaltyWarning, Scene};
 use iga_contact::Error;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
-
-/// The system allocator, except that a failed allocation ends the process
-/// with one `error:` line and exit code 1 instead of Rust's abort (SIGABRT,
-/// "memory allocation of … bytes failed"). The resource estimate refuses
-/// runs that would not fit before they start; this is the last line of
-/// defence when the estimate is exceeded (another process took the memory,
-/// a `ulimit -v` tighter than the budget).
-struct Guarded;
-
-// SAFETY: every call is forwarded to the system allocator unchanged; only
-// a null result is intercepted, and then the process ends.
-unsafe impl GlobalAlloc for Guarded {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc(layout);
-        if p.is_null() {
-            out_of_memory(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = System.alloc_zeroed(layout);
-        if p.is_null() {
-            out_of_memory(layout.size());
-        }
-        p
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = System.realloc(ptr, layout, new_size);
-        if p.is_null() {
-            out_of_memory(new_size);
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Guarded = Guarded;
-
-/// Reports a failed allocation and exits, allocating nothing: the message
-/// is formatted into a stack buffer and written with `write(2)`.
-fn out_of_memory(size: usize) -> ! {
-    let mut buf = [0u8; 320];
-    let mut cur = std::io::Cursor::new(&mut buf[..]);
-    let _ = writeln!(
-        cur,
-        "error: out of memory: allocating {size} bytes failed; the run needs more memory than is \
-         available (lower --max-memory to have such runs refused before they start)"
-    );
-    let n = cur.position() as usize;
-    // SAFETY: writes n initialised bytes of `buf` to stderr, then exits
-    // without running destructors or allocating.
-    unsafe {
-        libc::write(2, buf.as_ptr().cast(), n);
-        libc::_exit(1)
-    }
-}
 
 /// Isogeometric frictionless contact with Nitsche's method and BFGS
 /// (a companion to Hu 2021).

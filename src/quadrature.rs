@@ -42,12 +42,30 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     (x, w)
 }
 
+/// The rules the spaces use (up to 30 points per direction), each computed
+/// once: assembly asks for the same rule on every element, and the Newton
+/// iteration behind it was a few per cent of assembling a small mesh.
+const CACHED: usize = 32;
+
+fn cached_rule(n: usize) -> Option<&'static (Vec<f64>, Vec<f64>)> {
+    static RULES: std::sync::OnceLock<Vec<(Vec<f64>, Vec<f64>)>> = std::sync::OnceLock::new();
+    let rules = RULES.get_or_init(|| (1..=CACHED).map(gauss_legendre).collect());
+    (1..=CACHED).contains(&n).then(|| &rules[n - 1])
+}
+
 /// A rule mapped to [a, b].
 pub fn on_interval(n: usize, a: f64, b: f64) -> Vec<(f64, f64)> {
-    let (x, w) = gauss_legendre(n);
+    let computed;
+    let (x, w) = match cached_rule(n) {
+        Some(rule) => rule,
+        None => {
+            computed = gauss_legendre(n);
+            &computed
+        }
+    };
     let h = 0.5 * (b - a);
     x.iter()
-        .zip(&w)
+        .zip(w.iter())
         .map(|(xi, wi)| (a + h * (xi + 1.0), h * wi))
         .collect()
 }
