@@ -62,6 +62,23 @@ pub struct PressureProfile {
     side_ends: Vec<[[f64; 2]; 2]>,
 }
 
+/// The contact points of `problem`'s pairs placed at `per_element` Gauss
+/// points of every slave element, whatever rule the solver used: the
+/// denser sampling that post-processing measures on.
+pub fn dense_contact_points(problem: &Problem, per_element: usize) -> Result<Vec<ContactPoint>> {
+    let pairs: Vec<_> = problem
+        .pairs
+        .iter()
+        .map(|p| {
+            let mut p = p.clone();
+            p.nitsche.integration = Integration::Gauss;
+            p.nitsche.gauss_points = Some(per_element);
+            p
+        })
+        .collect();
+    contact_points(&problem.bodies, &problem.map, &pairs)
+}
+
 impl PressureProfile {
     /// Samples the bracket of `full` (all DOFs) at `per_element` Gauss
     /// points of every slave element (`per_element` in 1..=30).
@@ -73,17 +90,7 @@ impl PressureProfile {
                 format!("the DOF map has {} DOFs", problem.map.n_total()),
             ));
         }
-        let pairs: Vec<_> = problem
-            .pairs
-            .iter()
-            .map(|p| {
-                let mut p = p.clone();
-                p.nitsche.integration = Integration::Gauss;
-                p.nitsche.gauss_points = Some(per_element);
-                p
-            })
-            .collect();
-        let points = contact_points(&problem.bodies, &problem.map, &pairs)?;
+        let points = dense_contact_points(problem, per_element)?;
         Ok(Self::from_points(problem, &points, full))
     }
 
@@ -521,8 +528,8 @@ pub fn stability_of(
     for cp in points {
         let s = &mut out[cp.pair];
         s.points += 1;
-        let bound = crate::contact::penalty::stability_bound(cp.trace_constant, cp.theta);
-        let below = cp.below_stability_bound();
+        let bound = cp.stability_bound();
+        let below = cp.gamma < bound;
         s.below += usize::from(below);
         if active(cp) {
             s.active += 1;

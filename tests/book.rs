@@ -16,16 +16,23 @@ fn book_src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src")
 }
 
-/// Every `{{#include path[:anchor]}}` in the chapters (escaped ones aside).
-fn includes() -> Vec<(String, String, Option<String>)> {
+/// Every chapter source: its file name (`hertz.md`) and its text.
+fn chapters() -> Vec<(String, String)> {
     let mut out = Vec::new();
     for entry in std::fs::read_dir(book_src()).unwrap() {
         let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "md") {
-            continue;
+        if path.extension().is_some_and(|e| e == "md") {
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            out.push((name, std::fs::read_to_string(&path).unwrap()));
         }
-        let text = std::fs::read_to_string(&path).unwrap();
-        let chapter = path.file_name().unwrap().to_string_lossy().into_owned();
+    }
+    out
+}
+
+/// Every `{{#include path[:anchor]}}` in the chapters (escaped ones aside).
+fn includes() -> Vec<(String, String, Option<String>)> {
+    let mut out = Vec::new();
+    for (chapter, text) in chapters() {
         let mut rest = text.as_str();
         while let Some(k) = rest.find("{{#include ") {
             let escaped = k > 0 && rest.as_bytes()[k - 1] == b'\\';
@@ -161,12 +168,7 @@ fn the_generated_data_is_what_the_programs_compute() {
 fn every_test_a_chapter_names_exists() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut named = 0;
-    for entry in std::fs::read_dir(book_src()).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "md") {
-            continue;
-        }
-        let text = std::fs::read_to_string(&path).unwrap();
+    for (chapter, text) in chapters() {
         for (at, _) in text.match_indices("tests/") {
             let rest = &text[at..];
             let Some((file, after)) = rest.split_once(".rs::") else {
@@ -180,11 +182,10 @@ fn every_test_a_chapter_names_exists() {
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
             let source = std::fs::read_to_string(root.join(format!("{file}.rs")))
-                .unwrap_or_else(|e| panic!("{}: {file}.rs: {e}", path.display()));
+                .unwrap_or_else(|e| panic!("{chapter}: {file}.rs: {e}"));
             assert!(
                 source.contains(&format!("fn {name}(")),
-                "{}: no test `{name}` in {file}.rs",
-                path.display()
+                "{chapter}: no test `{name}` in {file}.rs"
             );
             named += 1;
         }
@@ -345,13 +346,7 @@ const TYPED_ON_PURPOSE: &[(&str, &str, &str)] = &[
 #[test]
 fn the_prose_types_no_measured_number() {
     let mut offenders = Vec::new();
-    for entry in std::fs::read_dir(book_src()).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_none_or(|e| e != "md") {
-            continue;
-        }
-        let chapter = path.file_name().unwrap().to_string_lossy().into_owned();
-        let text = std::fs::read_to_string(&path).unwrap();
+    for (chapter, text) in chapters() {
         for token in typed_results(&prose(&text)) {
             let allowed = TYPED_ON_PURPOSE
                 .iter()

@@ -3,8 +3,9 @@
 //! applied to one of our solutions, so that both codes' p₀ are measured
 //! against the same reference solution with their own estimator.
 
-use iga_contact::contact::{contact_points, Integration, Role};
+use iga_contact::contact::Role;
 use iga_contact::error::{Error, Result};
+use iga_contact::post;
 use iga_contact::problem::Problem;
 use std::path::Path;
 
@@ -176,17 +177,7 @@ pub fn parse(text: &str) -> Result<Peer> {
 /// "first zero" lands next to x = 0. GetFEM's a is therefore compared with
 /// our estimator's.
 pub fn peak_pressure(problem: &Problem, full: &[f64]) -> Result<f64> {
-    let pairs: Vec<_> = problem
-        .pairs
-        .iter()
-        .map(|p| {
-            let mut p = p.clone();
-            p.nitsche.integration = Integration::Gauss;
-            p.nitsche.gauss_points = Some(20);
-            p
-        })
-        .collect();
-    let points = contact_points(&problem.bodies, &problem.map, &pairs)?;
+    let points = post::dense_contact_points(problem, 20)?;
     Ok(points
         .iter()
         .filter(|c| c.role == Role::Slave && c.pair == 0)

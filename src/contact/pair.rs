@@ -98,11 +98,16 @@ impl ContactPoint {
         s + self.gamma * (self.g0 - j)
     }
 
-    /// Whether γ lies below the stability bound of the point's slave
-    /// element ([`super::penalty::stability_bound`]): where such a point is
+    /// The smallest stable γ at this point: the stability bound of its
+    /// slave element for its θ ([`super::penalty::stability_bound`]).
+    pub fn stability_bound(&self) -> f64 {
+        super::penalty::stability_bound(self.trace_constant, self.theta)
+    }
+
+    /// Whether γ lies below [`Self::stability_bound`]: where such a point is
     /// active, the tangent need not be coercive.
     pub fn below_stability_bound(&self) -> bool {
-        self.gamma < super::penalty::stability_bound(self.trace_constant, self.theta)
+        self.gamma < self.stability_bound()
     }
 }
 
