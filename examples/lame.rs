@@ -249,43 +249,68 @@ pub fn table(rows: &[Row]) -> Result<Table> {
     Ok(t)
 }
 
-/// Both errors against the number of unknowns, log–log: L² solid, energy
-/// dashed, one colour per degree.
+/// Both errors against the number of unknowns, log–log: one colour per
+/// degree, the data solid (L² with circles, energy with squares), the
+/// reference slopes of the optimal rates dotted. The legend names the
+/// degrees and the two markers once, not every curve.
 pub fn plot(rows: &[Row], path: &std::path::Path) -> Result<()> {
-    use iga_contact::report::plot::{line_chart, Axes, Series};
+    use iga_contact::report::plot::{line_chart, Axes, Series, BLACK_INDEX};
+    const CIRCLE: usize = 0;
+    const SQUARE: usize = 1;
     let mut degrees: Vec<usize> = rows.iter().map(|r| r.degree).collect();
     degrees.dedup();
     let mut series = Vec::new();
-    for &p in &degrees {
+    for (k, &p) in degrees.iter().enumerate() {
         let pts = |f: fn(&Row) -> f64| -> Vec<(f64, f64)> {
             rows.iter()
                 .filter(|r| r.degree == p)
                 .map(|r| (r.dofs as f64, f(r)))
                 .collect()
         };
-        series.push(Series::line(format!("L², p = {p}"), pts(|r| r.l2_error)).with_markers());
         series.push(
-            Series::line(format!("energy, p = {p}"), pts(|r| r.energy_error))
-                .with_markers()
-                .dashed(),
+            Series::line("", pts(|r| r.l2_error))
+                .with_shape(CIRCLE)
+                .colored(k),
+        );
+        series.push(
+            Series::line("", pts(|r| r.energy_error))
+                .with_shape(SQUARE)
+                .colored(k),
         );
     }
     // Reference slopes in N (unknowns ~ h⁻²): the optimal L² rate p + 1 in
     // h is a slope −(p + 1)/2 in N, the energy rate p a slope −p/2. Each is
     // drawn through the finest point of its curve, over the last two decades.
-    for &p in &degrees {
+    for (k, &p) in degrees.iter().enumerate() {
         let last = rows.iter().rfind(|r| r.degree == p).expect("rows of p");
         let n1 = last.dofs as f64;
-        for (err, rate, what) in [
-            (last.l2_error, p + 1, "L²"),
-            (last.energy_error, p, "energy"),
-        ] {
+        for (err, rate) in [(last.l2_error, p + 1), (last.energy_error, p)] {
             let slope = -(rate as f64) / 2.0;
             let n0 = n1 / 100.0;
             let line = vec![(n0, err * (n0 / n1).powf(slope)), (n1, err)];
-            series.push(Series::line(format!("slope h^{rate} ({what}, p = {p})"), line).dashed());
+            series.push(Series::line("", line).dotted().colored(k));
         }
     }
+    // The legend: one entry per degree, per marker and for the guides
+    // (point-less series draw nothing but their legend entry).
+    for (k, &p) in degrees.iter().enumerate() {
+        series.push(Series::line(format!("p = {p}"), vec![]).colored(k));
+    }
+    series.push(
+        Series::line("L²", vec![])
+            .with_shape(CIRCLE)
+            .colored(BLACK_INDEX),
+    );
+    series.push(
+        Series::line("energy", vec![])
+            .with_shape(SQUARE)
+            .colored(BLACK_INDEX),
+    );
+    series.push(
+        Series::line("optimal rate (L²: p + 1, energy: p)", vec![])
+            .dotted()
+            .colored(BLACK_INDEX),
+    );
     let axes = Axes {
         title: "Lamé cylinder: relative errors".into(),
         x_label: "unknowns (free DOFs)".into(),

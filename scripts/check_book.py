@@ -17,9 +17,11 @@ width with mdBook's default theme, and the page fails on:
 - a request leaving the book: a file:// URL outside BOOK_OUT, or any other host.
 
 It also counts figures (<img>) and tables without a visible numbered caption:
-a paragraph right after the image, or right before or after the table, whose
-text starts with "Fig. N" / "Figure N" or "Table N" (N a number, optionally
-followed by a letter), or a <figcaption>/<caption>. With --captions fail a
+a paragraph right after the image, or right before or after the table (past its
+"Download" line), whose text starts with "Fig. N" / "Figure N" or "Table N" (N a
+number, optionally preceded by the chapter's code of up to three capitals, as in
+"Fig. H2" or "Table NI1", and optionally followed by a letter), or a
+<figcaption>/<caption>. With --captions fail a
 missing caption fails the page; by default it is only reported.
 
 --self-test builds the fixture book tests/fixtures/book-check (a too-wide
@@ -70,8 +72,10 @@ CHROMIUM_FLAGS = [
 # Measures one loaded page; returns a JSON-able object (see Page.absorb).
 MEASURE_JS = r"""
 (() => {
-  const FIG = /^\s*(Fig\.|Figure)\s*\d+[a-z]?\b/;
-  const TAB = /^\s*Table\s+\d+[a-z]?\b/;
+  // "Fig. 3", "Fig. H2", "Fig. NI1b", "Table PS4": an optional chapter code
+  // (one to three capitals) before the number, as the book numbers them.
+  const FIG = /^\s*(Fig\.|Figure)\s*[A-Z]{0,3}\d+[a-z]?\b/;
+  const TAB = /^\s*Table\s+[A-Z]{0,3}\d+[a-z]?\b/;
   const main = document.querySelector('main') || document.body;
   const col = main.getBoundingClientRect();
   const short = (s) => s.trim().replace(/\s+/g, ' ').slice(0, 90);
@@ -148,7 +152,9 @@ MEASURE_JS = r"""
                            column: host.clientWidth});
     }
     const cap = t.querySelector('caption');
-    const prev = wrap.previousElementSibling, next = wrap.nextElementSibling;
+    // the "Download: name.csv" line after a generated table is not its caption
+    const skip = (e) => (e && e.classList.contains('download') ? e.nextElementSibling : e);
+    const prev = wrap.previousElementSibling, next = skip(wrap.nextElementSibling);
     const ok = (cap && visible(cap) && TAB.test(cap.textContent))
       || (prev && visible(prev) && TAB.test(prev.textContent))
       || (next && visible(next) && TAB.test(next.textContent));

@@ -24,6 +24,7 @@ macro_rules! chapters {
 
 chapters! {
     introduction => "introduction.md",
+    notation => "notation.md",
     nurbs => "nurbs.md",
     elasticity => "elasticity.md",
     gap => "gap.md",
@@ -41,5 +42,6 @@ chapters! {
     penalty_study => "penalty_study.md",
     scenes => "scenes.md",
     reliability => "reliability.md",
+    limitations => "limitations.md",
 }
 // ANCHOR_END: chapters

@@ -135,7 +135,7 @@ fn line_chart_on_linear_axes() {
             .map(|&(x, p)| (x, p * 0.98))
             .collect(),
         markers: true,
-        dashed: false,
+        ..Series::default()
     };
     line_chart(&path, &axes, &[exact, computed]).unwrap();
     assert_svg_with_text(&path, &["Contact pressure", "Hertz", "Nitsche, p = 2"]);

@@ -75,8 +75,19 @@ pub struct ContactPoint {
     pub theta: f64,
     /// Quadrature weight including the arc length.
     pub weight: f64,
+    /// The degrees of freedom the point's functionals reach, in the global
+    /// numbering of the full displacement vector: the two DOFs of each
+    /// control point of the slave element holding x¹, then (for an elastic
+    /// master) those of the master control points whose basis functions are
+    /// non-zero at x̄². `sn` and `jn` are indexed like this list.
     pub dofs: Vec<usize>,
+    /// The normal stress σ_n(u) = n¹·σ(u¹)n¹ at x¹ as a linear functional:
+    /// σ_n(u) = Σ_k sn[k] u[dofs[k]]. It uses the slave's basis gradients and
+    /// material only, so its entries on master DOFs are zero.
     pub sn: Vec<f64>,
+    /// The jump of the normal displacement ⟦u_n⟧ = (u¹(x¹) − u²(x̄²))·n¹ as
+    /// a linear functional, ⟦u_n⟧ = Σ_k jn[k] u[dofs[k]]: R¹_A n¹ on the slave
+    /// DOFs, −R²_B n¹ on the master's. The gap is g_n = g₀ − ⟦u_n⟧, Eq. (5).
     pub jn: Vec<f64>,
 }
 

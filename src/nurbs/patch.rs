@@ -141,6 +141,10 @@ impl NurbsPatch {
         PatchBasis { indices, r, dr }
     }
 
+    /// The geometry map of Eq. (1): the physical point
+    /// x(ξ, η) = Σ_A R_A(ξ, η) P_A of the parameters (ξ, η), with the
+    /// rational basis R_A of [`Self::basis`] and the control points P_A.
+    /// (ξ, η) must lie in the knot vectors' ranges.
     pub fn point(&self, xi: f64, eta: f64) -> [f64; 2] {
         let b = self.basis(xi, eta);
         self.map(&b)

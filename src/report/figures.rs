@@ -261,7 +261,7 @@ pub fn basis_figure(
             label,
             color: palette(color),
             width: 2,
-            dashed: false,
+            stroke: Stroke::Solid,
             marker: None,
         });
         curves.push(BasisCurve {
@@ -285,7 +285,7 @@ pub fn basis_figure(
             label: "B-splines N (all weights 1)".into(),
             color: palette(7),
             width: 1,
-            dashed: true,
+            stroke: Stroke::Dashed,
             marker: None,
         });
     }
@@ -462,7 +462,7 @@ pub fn contact_sketch(
     let labels = [
         Label::new(x1, "x¹", LabelSide::Left),
         Label::new(x2, "x̄²", LabelSide::Left),
-        Label::new(mid, format!("g₀ = {}", short(cp.g0)), LabelSide::Right),
+        Label::new(mid, format!("g₀ = {} m", short(cp.g0)), LabelSide::Right),
         Label::new(tip(x1, n1), "n¹", LabelSide::Left).colored(3),
         Label::new(tip(x2, n2), "n²", LabelSide::Left).colored(2),
     ];

@@ -51,7 +51,35 @@ pub struct Series {
     /// Draw a marker at every point (the shape cycles with the series index,
     /// so curves stay distinguishable in greyscale print).
     pub markers: bool,
-    pub dashed: bool,
+    pub stroke: Stroke,
+    /// Index into the palette; `None`: the series index, so that each curve
+    /// has its own colour. Curves that belong together (one degree's two
+    /// errors and its reference slopes) share one.
+    pub color: Option<usize>,
+    /// Marker shape; `None`: the series index.
+    pub shape: Option<usize>,
+}
+
+/// How a [`Series`] is stroked: data solid, guides dashed or dotted, so
+/// that measured curves and reference lines cannot be mistaken for each
+/// other.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Stroke {
+    #[default]
+    Solid,
+    Dashed,
+    Dotted,
+}
+
+impl Stroke {
+    /// Dash and gap lengths in pixels, for the dashed kinds.
+    fn pattern(self) -> Option<(u32, u32)> {
+        match self {
+            Stroke::Solid => None,
+            Stroke::Dashed => Some((8, 5)),
+            Stroke::Dotted => Some((2, 4)),
+        }
+    }
 }
 
 impl Series {
@@ -61,7 +89,9 @@ impl Series {
             label: label.into(),
             points,
             markers: false,
-            dashed: false,
+            stroke: Stroke::Solid,
+            color: None,
+            shape: None,
         }
     }
 
@@ -71,7 +101,24 @@ impl Series {
     }
 
     pub fn dashed(mut self) -> Self {
-        self.dashed = true;
+        self.stroke = Stroke::Dashed;
+        self
+    }
+
+    pub fn dotted(mut self) -> Self {
+        self.stroke = Stroke::Dotted;
+        self
+    }
+
+    pub fn colored(mut self, palette_index: usize) -> Self {
+        self.color = Some(palette_index);
+        self
+    }
+
+    /// Markers of the given shape.
+    pub fn with_shape(mut self, shape: usize) -> Self {
+        self.markers = true;
+        self.shape = Some(shape);
         self
     }
 }
@@ -619,7 +666,7 @@ struct LegendEntry {
     label: String,
     color: RGBColor,
     width: u32,
-    dashed: bool,
+    stroke: Stroke,
     marker: Option<usize>,
 }
 
@@ -663,7 +710,11 @@ fn polyline_legend(lines: &[Polyline]) -> Vec<LegendEntry> {
             label: label.clone(),
             color: palette(line.color),
             width,
-            dashed,
+            stroke: if dashed {
+                Stroke::Dashed
+            } else {
+                Stroke::Solid
+            },
             marker: marker.then_some(0),
         });
     }
@@ -799,7 +850,8 @@ impl Frame {
         data_x: Bounds,
         data_y: Bounds,
     ) -> Frame {
-        let (x_desc, y_desc) = ("x", "y");
+        // every geometry and field figure is drawn in the crate's SI units
+        let (x_desc, y_desc) = ("x (m)", "y (m)");
         let x_area = x_area_height(x_desc);
         let mut y_range = data_y;
         let mut frame: Option<Frame> = None;
@@ -994,8 +1046,8 @@ fn draw_header<DB: DrawingBackend>(
                 ))?;
             }
             let ends = vec![(x, y), (x + LEGEND_SAMPLE, y)];
-            if e.dashed {
-                root.draw(&DashedPathElement::new(ends, 6, 4, style))?;
+            if let Some((dash, gap)) = e.stroke.pattern() {
+                root.draw(&DashedPathElement::new(ends, dash, gap, style))?;
             } else {
                 root.draw(&PathElement::new(ends, style))?;
             }
@@ -1201,10 +1253,10 @@ impl LineChart {
             .filter(|(_, s)| !s.label.is_empty())
             .map(|(i, s)| LegendEntry {
                 label: s.label.clone(),
-                color: palette(i % 10),
+                color: palette(s.color.unwrap_or(i % 10)),
                 width: 2,
-                dashed: s.dashed,
-                marker: s.markers.then_some(i),
+                stroke: s.stroke,
+                marker: s.markers.then_some(s.shape.unwrap_or(i)),
             })
             .collect();
         let frame = Frame::fixed(
@@ -1235,16 +1287,16 @@ impl Figure for LineChart {
         let region = chart_region(root, &self.frame);
         let mut chart = draw_axes(&region, &self.frame, true)?;
         for (i, (s, runs)) in self.series.iter().zip(&self.runs).enumerate() {
-            let color = palette(i % 10);
+            let color = palette(s.color.unwrap_or(i % 10));
             let style = ShapeStyle::from(&color).stroke_width(2);
             for run in runs {
-                if s.dashed {
-                    chart.draw_series(DashedLineSeries::new(run.clone(), 8, 5, style))?;
+                if let Some((dash, gap)) = s.stroke.pattern() {
+                    chart.draw_series(DashedLineSeries::new(run.clone(), dash, gap, style))?;
                 } else {
                     chart.draw_series(LineSeries::new(run.clone(), style))?;
                 }
                 if s.markers {
-                    let outline = marker_outline(i);
+                    let outline = marker_outline(s.shape.unwrap_or(i));
                     chart.draw_series(run.iter().map(|&p| {
                         EmptyElement::at(p) + Polygon::new(outline.clone(), color.filled())
                     }))?;
