@@ -526,10 +526,10 @@ fn the_scanner_finds_an_unchecked_relation() {
     let text = "# T\n\nThe solver is faster than BFGS. It runs, e.g. on Eq. 3, in order.\n\n\
                 Newton converges in fewer steps. <!-- check: fewer -->\n\n\
                 - Every point is open.\n\n```rust\n// check: fewer\nassert!(1 < 2);\n```\n";
-    let (problems, listing) = problems("t.md", text, true);
-    assert_eq!(problems.len(), 2, "{problems:?}");
-    assert!(problems[0].contains("faster") && problems[0].contains("is faster than BFGS."));
-    assert!(problems[1].contains("Every point is open."));
+    let (found, listing) = problems("t.md", text, true);
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert!(found[0].contains("faster") && found[0].contains("is faster than BFGS."));
+    assert!(found[1].contains("Every point is open."));
     assert_eq!(listing.len(), 1);
     assert!(listing[0].starts_with("  [fewer] Newton converges"));
     // the abbreviations did not split the second sentence
@@ -537,8 +537,8 @@ fn the_scanner_finds_an_unchecked_relation() {
     assert_eq!(s.len(), 2, "{s:?}");
     // a key with no assertion below it, and a key no code checks
     let text = "A is exact. <!-- check: a -->\n\n```rust\n// check: a\nlet x = 1;\n```\n";
-    let (problems, _) = problems("t.md", text, true);
-    assert_eq!(problems.len(), 2, "{problems:?}");
+    let (found, _) = problems("t.md", text, true);
+    assert_eq!(found.len(), 2, "{found:?}");
     // names are not relations
     assert!(relation_words("The exact solution is linear.").is_empty());
     assert_eq!(relation_words("It is exact."), ["exact"]);

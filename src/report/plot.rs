@@ -1046,7 +1046,13 @@ fn draw_header<DB: DrawingBackend>(
                 ))?;
             }
             let ends = vec![(x, y), (x + LEGEND_SAMPLE, y)];
-            if let Some((dash, gap)) = e.stroke.pattern() {
+            // the legend's samples are short, so their dashes are too
+            let pattern = match e.stroke {
+                Stroke::Solid => None,
+                Stroke::Dashed => Some((6, 4)),
+                Stroke::Dotted => Some((2, 3)),
+            };
+            if let Some((dash, gap)) = pattern {
                 root.draw(&DashedPathElement::new(ends, dash, gap, style))?;
             } else {
                 root.draw(&PathElement::new(ends, style))?;
