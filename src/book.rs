@@ -24,6 +24,7 @@ macro_rules! chapters {
 
 chapters! {
     introduction => "introduction.md",
+    claims => "claims.md",
     nurbs => "nurbs.md",
     elasticity => "elasticity.md",
     gap => "gap.md",
