@@ -25,6 +25,7 @@ macro_rules! chapters {
 chapters! {
     introduction => "introduction.md",
     notation => "notation.md",
+    claims => "claims.md",
     nurbs => "nurbs.md",
     elasticity => "elasticity.md",
     gap => "gap.md",

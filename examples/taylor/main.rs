@@ -178,6 +178,36 @@ fn main() -> Result<()> {
     chapter.table("summary", &summary)?;
     chapter.table("errors", &errors)?;
 
+    // The paper's numbers beside ours, each labelled with where the paper
+    // gives it (Table T3 of the chapter).
+    let mut beside = Table::new(vec![
+        Column::plain("quantity", "quantity"),
+        Column::plain("paper", "the paper"),
+        Column::plain("segment", "ours, segment"),
+        Column::plain("gauss", "ours, Gauss points"),
+    ]);
+    let gauss = &cases[1];
+    let percent = |v: f64| Format::Percent(2).render(v);
+    beside.push(vec![
+        "quasi-Newton iterations (the paper's Table 1)".into(),
+        PAPER_ITERATIONS.into(),
+        segment.solution.history.len().into(),
+        gauss.solution.history.len().into(),
+    ])?;
+    beside.push(vec![
+        "max |σ_yy + p|/p (the paper's Fig. 3)".into(),
+        percent(PAPER_SYY_ERROR).into(),
+        percent(segment.errors.syy).into(),
+        percent(gauss.errors.syy).into(),
+    ])?;
+    beside.push(vec![
+        "u_y on top, m (the paper's Table 1, last row)".into(),
+        PAPER_TABLE_1[PAPER_TABLE_1.len() - 1].3.into(),
+        Format::Fixed(5).render(segment.errors.uy_top).into(),
+        Format::Fixed(5).render(gauss.errors.uy_top).into(),
+    ])?;
+    chapter.table("paper_beside_ours", &beside)?;
+
     let mut paper = Table::new(vec![
         Column::plain("iteration", "it."),
         Column::new("residual", "‖R‖", Unit::None, Format::Plain),
@@ -198,6 +228,12 @@ fn main() -> Result<()> {
     let f = chapter.facts();
     f.count("paper_iterations", PAPER_ITERATIONS)?;
     f.number("paper_syy_error", PAPER_SYY_ERROR, Format::Percent(2))?;
+    f.number("paper_syy_log10", PAPER_SYY_ERROR.log10(), Format::Fixed(2))?;
+    f.number(
+        "gauss_syy_log10",
+        cases[1].errors.syy.log10(),
+        Format::Fixed(2),
+    )?;
     for c in &cases {
         let name = rule_name(c.rule);
         let e = &c.errors;
@@ -285,7 +321,10 @@ fn main() -> Result<()> {
         field_figure(
             chapter.path(&format!("error_syy_{name}.svg")),
             &format!("Relative σ_yy error, {name} integration"),
-            "log10 |σ_yy + p| / p",
+            &format!(
+                "log₁₀ |σ_yy + p|/p (the paper's max: {})",
+                Format::Fixed(2).render(PAPER_SYY_ERROR.log10())
+            ),
             &cells,
             &grid,
         )?;

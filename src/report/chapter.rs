@@ -97,6 +97,8 @@ pub const PROGRAMS: &[Program] = &[
     program("penalty", "penalty", Cost::Quick),
     program("penalty_contrast", "penalty_contrast", Cost::Heavy),
     program("stability", "stability", Cost::Quick),
+    // reads the facts of taylor, hertz, iga_vs_fem and penalty
+    program("claims", "claims", Cost::Quick),
     program("scenes", "scenes", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),
 ];

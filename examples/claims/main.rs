@@ -1,0 +1,310 @@
+//! The paper's claims with verdicts: the program behind the chapter "What
+//! the paper claims, and what we measured".
+//!
+//! It solves nothing. It reads the facts the other chapter programs wrote
+//! (`book/src/generated/<chapter>/facts.txt`), applies to each claim of the
+//! paper a rule that turns the evidence into a verdict — holds, holds with
+//! limits, does not hold — and writes the verdict table and its facts to
+//! `book/src/generated/claims/`. It must run after the chapters it reads
+//! (`report::chapter::PROGRAMS` lists it after them).
+//!
+//! Run it with `cargo run --release --example claims`.
+
+use iga_contact::book::facts;
+use iga_contact::error::{Error, Result};
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::facts::Facts;
+use iga_contact::report::table::{Column, Format, Table};
+
+// ANCHOR: verdict
+/// What the evidence says about a claim.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Verdict {
+    Holds,
+    HoldsWithLimits,
+    DoesNotHold,
+}
+
+impl Verdict {
+    fn as_str(self) -> &'static str {
+        match self {
+            Verdict::Holds => "holds",
+            Verdict::HoldsWithLimits => "holds with limits",
+            Verdict::DoesNotHold => "does not hold",
+        }
+    }
+
+    /// All of the cases support the claim: it holds; some: it holds with
+    /// limits; none: it does not hold.
+    fn of(supporting: usize, cases: usize) -> Self {
+        if cases > 0 && supporting == cases {
+            Verdict::Holds
+        } else if supporting > 0 {
+            Verdict::HoldsWithLimits
+        } else {
+            Verdict::DoesNotHold
+        }
+    }
+}
+// ANCHOR_END: verdict
+
+/// One claim, judged.
+struct Claim {
+    key: &'static str,
+    claim: &'static str,
+    verdict: Verdict,
+    evidence: String,
+    conditions: &'static str,
+    chapter: &'static str,
+}
+
+/// A number of a chapter's facts, or an error naming it.
+fn value(f: &Facts, chapter: &str, key: &str) -> Result<f64> {
+    f.value(key)
+        .ok_or_else(|| Error::invalid(format!("{chapter} facts"), key, "missing or not a number"))
+}
+
+fn text<'a>(f: &'a Facts, chapter: &str, key: &str) -> Result<&'a str> {
+    f.get(key)
+        .ok_or_else(|| Error::invalid(format!("{chapter} facts"), key, "missing"))
+}
+
+const SETUPS: [(&str, &str); 4] = [
+    ("hertz", "Hertz disk"),
+    ("taylor", "Taylor blocks"),
+    ("cylinders", "two cylinders"),
+    ("block", "block on floor"),
+];
+
+/// The meshes and degrees of the Hertz chapter's solver ladder.
+const LADDER: [(usize, usize); 8] = [
+    (2, 8),
+    (2, 16),
+    (2, 32),
+    (2, 64),
+    (3, 8),
+    (3, 16),
+    (3, 32),
+    (3, 64),
+];
+
+// ANCHOR: claims
+/// Claim 1: the empirical penalty (11) makes the eigenvalue problem of a
+/// sharp penalty unnecessary. Evidence: (11) over the θ = 0 bound at first
+/// touch, smallest over p = 1…5, for each set-up of the penalty chapter.
+fn penalty_claim() -> Result<Claim> {
+    let f = facts("penalty")?;
+    let mut above = Vec::new();
+    let mut below = Vec::new();
+    for (key, name) in SETUPS {
+        let margin = value(&f, "penalty", &format!("{key}_first_min_theta0"))?;
+        let entry = format!("{name} {}", Format::Fixed(2).render(margin));
+        if margin > 1.0 {
+            above.push(entry);
+        } else {
+            below.push(entry);
+        }
+    }
+    let verdict = Verdict::of(above.len(), SETUPS.len());
+    let mut evidence = format!(
+        "(11) over the θ = 0 bound, smallest over p = 1…5: above 1 on {}",
+        above.join(", ")
+    );
+    if !below.is_empty() {
+        evidence += &format!("; below 1 on {}", below.join(", "));
+    }
+    Ok(Claim {
+        key: "penalty",
+        claim: "the empirical penalty (11) makes the eigenvalue problem unnecessary",
+        verdict,
+        evidence,
+        conditions: "θ = 0, penalty factor 1, p = 1…5, 4² and 16², where the bodies first touch",
+        chapter: "[The penalty, measured](penalty_study.md)",
+    })
+}
+
+/// Claim 2: K̃₀ (17) is a good enough start for BFGS. Evidence: the paper's
+/// iteration (from K̃₀) on every run of the Hertz ladder, and on Taylor.
+fn start_claim() -> Result<Claim> {
+    let f = facts("hertz")?;
+    let mut failed = Vec::new();
+    for (p, n) in LADDER {
+        let key = format!("its_bfgs_paper_p{p}_{n}");
+        if text(&f, "hertz", &key)? == "failed" {
+            failed.push(format!("p = {p} on {n}²"));
+        }
+    }
+    let taylor = value(&facts("taylor")?, "taylor", "segment_iterations")?;
+    let converged = LADDER.len() - failed.len();
+    let mut evidence = format!(
+        "the paper's iteration from K̃₀ converges in {converged} of {} Hertz runs",
+        LADDER.len()
+    );
+    if !failed.is_empty() {
+        evidence += &format!(" (it cycles between active sets on {})", failed.join(", "));
+    }
+    evidence += &format!(", and on the Taylor test in {taylor} iteration(s)");
+    Ok(Claim {
+        key: "start",
+        claim: "K̃₀ (17) is a good enough start for BFGS",
+        verdict: Verdict::of(converged, LADDER.len()),
+        evidence,
+        conditions: "Hertz p = 2, 3 on 8² to 64², θ = 0, (11), the paper's full steps",
+        chapter: "[Hertz](hertz.md#the-solver-ladder)",
+    })
+}
+
+/// Claim 3: the secant correction (18) rescues BFGS when the contact zone
+/// changes. Like for like: the paper's iteration with and without (18).
+fn correction_claim() -> Result<Claim> {
+    let f = facts("hertz")?;
+    let mut helped = 0;
+    let mut cases = 0;
+    let mut pairs = Vec::new();
+    for (p, n) in LADDER {
+        let with = f.value(&format!("its_bfgs_paper_p{p}_{n}"));
+        let without = f.value(&format!("its_bfgs_paper_no_correction_p{p}_{n}"));
+        let show = |v: Option<f64>| v.map_or("failed".to_string(), |v| format!("{v}"));
+        pairs.push(format!("p = {p}, {n}²: {} / {}", show(with), show(without)));
+        cases += 1;
+        // helped: the corrected run converges, in fewer iterations or
+        // where the uncorrected one fails
+        if let Some(w) = with {
+            if without.is_none_or(|o| w < o) {
+                helped += 1;
+            }
+        }
+    }
+    Ok(Claim {
+        key: "correction",
+        claim: "the secant correction (18) rescues BFGS when the contact zone changes",
+        verdict: Verdict::of(helped, cases),
+        evidence: format!(
+            "iterations of the paper's iteration with / without (18): {}; it helps in {helped} of {cases}",
+            pairs.join("; ")
+        ),
+        conditions: "Hertz p = 2, 3 on 8² to 64², θ = 0, (11), tied start, full steps, body space",
+        chapter: "[Hertz](hertz.md#the-solver-ladder), [Solvers](solvers.md)",
+    })
+}
+
+/// Claim 4: IGA is more accurate than FEM on the same coarse mesh. Evidence:
+/// p₀ and a of IGA p = 2, FEM Q1 and FEM Q2 on 8×8 against the converged
+/// reference of the Hertz chapter.
+fn accuracy_claim() -> Result<Claim> {
+    let g = facts("iga_vs_fem")?;
+    let h = facts("hertz")?;
+    let rp0 = value(&h, "hertz", "reference_p0_mpa")?;
+    let ra = value(&h, "hertz", "reference_a_mm")?;
+    let error = |m: &str| -> Result<[f64; 2]> {
+        let p0 = value(&g, "iga_vs_fem", &format!("{m}_p0_mpa"))?;
+        let a = value(&g, "iga_vs_fem", &format!("{m}_a_mm"))?;
+        Ok([(p0 / rp0 - 1.0).abs(), (a / ra - 1.0).abs()])
+    };
+    let iga = error("iga")?;
+    let mut better = 0;
+    let mut cases = 0;
+    let mut parts = Vec::new();
+    for (m, name) in [("q1", "Q1"), ("q2", "Q2")] {
+        let e = error(m)?;
+        for (k, q) in ["p₀", "a"].iter().enumerate() {
+            cases += 1;
+            if iga[k] < e[k] {
+                better += 1;
+            }
+            parts.push(format!(
+                "{q}: IGA {} against {name} {}",
+                Format::Percent(1).render(iga[k]),
+                Format::Percent(1).render(e[k])
+            ));
+        }
+    }
+    Ok(Claim {
+        key: "accuracy",
+        claim: "IGA is more accurate than FEM on the same coarse mesh",
+        verdict: Verdict::of(better, cases),
+        evidence: format!(
+            "errors against the converged reference: {}; IGA wins {better} of {cases}",
+            parts.join("; ")
+        ),
+        conditions: "Hertz 8×8, IGA p = 2 against isoparametric Q1 and Q2 (nodes on the circle), θ = 0, (11)",
+        chapter: "[IGA against FEM](iga_vs_fem.md)",
+    })
+}
+
+/// Claim 5: IGA takes longer than FEM. Evidence: the 8×8 timings of the
+/// IGA-against-FEM chapter, the paper's iteration on one thread (timed).
+fn time_claim() -> Result<Claim> {
+    let g = facts("iga_vs_fem")?;
+    let mut slower = 0;
+    let mut cases = 0;
+    let mut parts = Vec::new();
+    for (m, name) in [("q1", "Q1"), ("q2", "Q2")] {
+        let ratio = value(&g, "iga_vs_fem", &format!("{m}_paper_ratio"))?;
+        cases += 1;
+        if ratio > 1.0 {
+            slower += 1;
+        }
+        parts.push(format!(
+            "IGA time / {name} time {}",
+            Format::Times(1).render(ratio)
+        ));
+    }
+    Ok(Claim {
+        key: "time",
+        claim: "IGA takes longer than FEM",
+        verdict: Verdict::of(slower, cases),
+        evidence: format!(
+            "{} (the paper: {}); milliseconds, against the paper's minutes",
+            parts.join(", "),
+            text(&g, "iga_vs_fem", "paper_ratio")?
+        ),
+        conditions: "Hertz 8×8, the paper's iteration, one thread, median of repeated runs on a shared machine",
+        chapter: "[IGA against FEM](iga_vs_fem.md), [Accuracy per second](error_vs_time.md)",
+    })
+}
+// ANCHOR_END: claims
+
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("claims")?;
+    let claims = [
+        penalty_claim()?,
+        start_claim()?,
+        correction_claim()?,
+        accuracy_claim()?,
+        time_claim()?,
+    ];
+    // ANCHOR: table
+    let mut table = Table::new(vec![
+        Column::plain("claim", "the paper's claim"),
+        Column::plain("verdict", "verdict"),
+        Column::plain("evidence", "what we measured"),
+        Column::plain("conditions", "conditions"),
+        Column::plain("chapter", "measured in"),
+    ]);
+    for c in &claims {
+        table.push(vec![
+            c.claim.into(),
+            format!("**{}**", c.verdict.as_str()).into(),
+            c.evidence.clone().into(),
+            c.conditions.into(),
+            c.chapter.into(),
+        ])?;
+    }
+    // the timing claim rests on wall-clock times
+    let timed: Vec<&Claim> = claims.iter().filter(|c| c.key == "time").collect();
+    let untimed: Vec<&Claim> = claims.iter().filter(|c| c.key != "time").collect();
+    chapter.table("verdicts", &table)?;
+    chapter.timed("verdicts.csv");
+    chapter.timed("verdicts.md");
+    let f = chapter.facts();
+    for c in untimed {
+        f.text(&format!("{}_verdict", c.key), c.verdict.as_str())?;
+    }
+    for c in timed {
+        f.timed_text(&format!("{}_verdict", c.key), c.verdict.as_str())?;
+    }
+    f.count("claims", claims.len())?;
+    // ANCHOR_END: table
+    chapter.finish()
+}
