@@ -357,21 +357,6 @@ fn run() -> Result<()> {
         ),
         Column::new("ours_error", "FEM Q2 error", Unit::None, Format::Sci(1)),
     ]);
-    // on the finest rung where GetFEM's Q2 and ours converge at both
-    // factors: the codes at the same factor, and our code at the two
-    // factors (were GetFEM's γ ten times ours, its F = 1 would sit by our
-    // F = 10)
-    let p0_of = |m: Method, fac: f64, n: usize| {
-        runs.iter()
-            .find(|r| r.method == m && r.factor == fac && r.elements == n)
-            .and_then(|r| r.p0_peer_estimator)
-    };
-    let common = LADDER.iter().copied().rev().find(|&n| {
-        FACTORS.iter().all(|&fac| {
-            p0_of(Method::GetFem(2), fac, n).is_some() && p0_of(Method::Fem(2), fac, n).is_some()
-        })
-    });
-    let mut codes_apart = 0.0f64;
     for &fac in &FACTORS {
         for n in LADDER {
             let find = |m: Method| {
@@ -385,9 +370,6 @@ fn run() -> Result<()> {
             };
             let (ge, oe) = (relative(gp, peer_p0).abs(), relative(op, peer_p0).abs());
             let d = relative(gp, op).abs();
-            if Some(n) == common {
-                codes_apart = codes_apart.max(d);
-            }
             check.push(vec![
                 Format::Plain.render(fac).into(),
                 n.into(),
@@ -399,15 +381,6 @@ fn run() -> Result<()> {
             ])?;
         }
     }
-    let factors_apart = common
-        .and_then(|n| {
-            let (a, b) = (
-                p0_of(Method::Fem(2), FACTORS[0], n)?,
-                p0_of(Method::Fem(2), FACTORS[1], n)?,
-            );
-            Some(relative(b, a).abs())
-        })
-        .unwrap_or(f64::NAN);
     chapter.table("penalty_check", &check)?;
 
     // Which method reaches each target first, in set-up + solve and in
@@ -510,8 +483,6 @@ fn run() -> Result<()> {
             .fold(0.0, f64::max),
         Format::Pow10(0),
     )?;
-    f.number("finest_codes_apart", codes_apart, Format::Pow10(1))?;
-    f.number("finest_factors_apart", factors_apart, Format::Pow10(1))?;
     // the script's a estimator on our reference solution
     f.number(
         "gap_zero_over_a",
