@@ -1,11 +1,12 @@
 //! The cost of a whole Hertz solve against one Cholesky factorisation of
-//! the bulk, on growing meshes, in one run.
+//! the bulk, on growing meshes, in one run: in-process and through the
+//! command line.
 //!
 //! For each case (degree p, N² elements) it measures, each phase in a child
 //! process of its own so that the peak memory is the phase's:
 //!
-//! - **assembly**: `Problem::new` (stiffness pattern and values, load,
-//!   contact points);
+//! - **assembly**: `Scene::build` (discretisation, contact points, stiffness
+//!   pattern and values, load);
 //! - **one Cholesky**: faer's symbolic (AMD) plus numeric Cholesky of
 //!   A₀ = K + Σ w γ jn jnᵀ, the bulk stiffness plus the contact penalty
 //!   (the Hertz disk floats without contact, so K alone is singular);
@@ -15,30 +16,52 @@
 //!   **back-substitution** (the body from the layer);
 //! - **total** (assembly + solve), **total / one Cholesky**, and the peak
 //!   resident memory (VmHWM) of the solve;
+//! - **the command line**: `iga-contact run` of the same scene (the default
+//!   solver, `summary = true`, the default memory budget) as a child
+//!   process: its wall time from spawn to exit, its peak resident memory
+//!   (`wait4`), and the `[timing]` table of its `summary.toml`, whose parts
+//!   must add up to that wall time within [`PARTS_WITHIN`];
 //! - the other route to the layer operator, for the record: blocked
 //!   multi-right-hand-side solves with the factor of A₀ for the ℓ layer
 //!   columns of A₀⁻¹ (route B), timed on one block of 64 columns and
 //!   scaled to ℓ.
 //!
-//! Each phase is timed 3 times (7 on the smallest mesh): the median is kept
-//! for the solve's phases, the fastest for the reference Cholesky.
+//! Each phase is timed 7 times on the smallest mesh, 3 times up to 256²
+//! and once above: the median is kept for the solve's phases and the
+//! command line, the fastest for the reference Cholesky. Meshes above
+//! [`IN_PROCESS_UP_TO`] are run through the command line only (one solve of
+//! several gigabytes is enough).
 //!
 //! Writes `book/src/generated/solver_scaling/` (the tables `scaling`, the
-//! totals, and `phases`, the split of the time) and prints them.
+//! totals, `phases`, the split of the in-process time, and `cli`, the
+//! split of the command-line run) and prints them.
 //! `cargo run --release --example solver_scaling [-- p:N ...]` (default
-//! 2:64 2:256 2:512 3:256 4:256; a few minutes, about 3 GB).
+//! 2:64 2:256 2:512 3:256 4:256 2:1024; builds on `cargo build --release`
+//! for the binary; tens of minutes, about 15 GB at 1024²).
 
 use iga_contact::post;
 use iga_contact::problem::Problem;
 use iga_contact::report::chapter::Chapter;
-use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{RefineSpec, Scene};
 use iga_contact::solver::{solve, SolverOptions};
-use iga_contact::timing::median_time;
-use std::process::{Command, ExitCode};
+use iga_contact::timing::{median_time, PhaseTimes};
+use std::path::Path;
+use std::process::{Command, ExitCode, Stdio};
 use std::time::Instant;
 
-const CASES: [(usize, usize); 5] = [(2, 64), (2, 256), (2, 512), (3, 256), (4, 256)];
+const CASES: [(usize, usize); 6] = [(2, 64), (2, 256), (2, 512), (3, 256), (4, 256), (2, 1024)];
+/// The largest mesh also solved in-process (above it, the command line only).
+const IN_PROCESS_UP_TO: usize = 512;
+/// How far the sum of the command line's `[timing]` parts may lie from its
+/// wall time measured from outside (process start and exit included).
+const PARTS_WITHIN: f64 = 0.05;
+/// The smallest mesh (elements per direction) [`PARTS_WITHIN`] is
+/// required of: on smaller ones what the summary cannot time — the start
+/// of the process, the commit of the outputs (a rename and a sync) and the
+/// exit, tenths of a second on a loaded machine — can be more than 5 % of
+/// the run.
+const PARTS_CHECKED_FROM: usize = 256;
 /// Right-hand sides per block of route B.
 const BLOCK: usize = 64;
 
@@ -59,15 +82,19 @@ fn peak_gb() -> f64 {
 /// hundredths of a second on the small mesh is mostly timer and scheduler
 /// noise.
 fn repeats(n: usize) -> usize {
-    if n <= 64 {
-        7
-    } else {
-        3
+    match n {
+        0..=64 => 7,
+        65..=256 => 3,
+        _ => 1,
     }
 }
 
+fn scene(p: usize, n: usize) -> iga_contact::Result<Scene> {
+    Scene::shipped("hertz.toml")?.refined("disk", RefineSpec::iga(p, [n, n]))
+}
+
 fn build(p: usize, n: usize) -> iga_contact::Result<(Problem, f64)> {
-    let scene = Scene::shipped("hertz.toml")?.refined("disk", RefineSpec::iga(p, [n, n]))?;
+    let scene = scene(p, n)?;
     let timed = median_time(repeats(n), || scene.build())?;
     Ok((timed.value, timed.seconds))
 }
@@ -127,13 +154,156 @@ fn solve_case(p: usize, n: usize) -> iga_contact::Result<()> {
     Ok(())
 }
 
-struct Row {
+/// The scene file the command line runs: `hertz.toml` refined to p, N²,
+/// with the default solver and only the summary as output.
+fn cli_scene(p: usize, n: usize) -> Result<String, String> {
+    let path = iga_contact::scene::shipped_path("hertz.toml");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut doc: toml::Table = toml::from_str(&text).map_err(|e| e.to_string())?;
+    doc.insert(
+        "title".into(),
+        format!("Hertz contact, IGA p = {p}, {n} × {n}").into(),
+    );
+    let refine = doc
+        .get_mut("body")
+        .and_then(|b| b.as_array_mut())
+        .and_then(|b| b.first_mut())
+        .and_then(|b| b.get_mut("refine"))
+        .and_then(|r| r.as_table_mut())
+        .ok_or("hertz.toml: no body[0].refine")?;
+    refine.insert("degree".into(), (p as i64).into());
+    refine.insert(
+        "elements".into(),
+        toml::Value::Array(vec![(n as i64).into(), (n as i64).into()]),
+    );
+    doc.remove("solver");
+    let mut output = toml::Table::new();
+    output.insert("summary".into(), true.into());
+    doc.insert("output".into(), output.into());
+    toml::to_string(&doc).map_err(|e| e.to_string())
+}
+
+/// One command-line run: wall time from spawn to exit, peak resident
+/// memory (bytes) and the `[timing]` of its summary.
+struct CliRun {
+    /// `None`: the default memory budget; else the `--max-memory` given
+    /// because the default refused the run.
+    max_memory: Option<&'static str>,
+    wall: f64,
+    peak: f64,
+    timing: PhaseTimes,
+    iterations: usize,
+}
+
+/// Runs `iga-contact run` on the scene of p, N² in `dir` (a fresh folder).
+fn cli_run(
+    bin: &Path,
+    dir: &Path,
     p: usize,
     n: usize,
+    max_memory: Option<&'static str>,
+) -> Result<CliRun, String> {
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, cli_scene(p, n)?).map_err(|e| e.to_string())?;
+    let out = dir.join("out");
+    let err = dir.join("stderr.txt");
+    let stderr = std::fs::File::create(&err).map_err(|e| e.to_string())?;
+    let t = Instant::now();
+    let mut command = Command::new(bin);
+    command.arg("run").arg(&scene).arg("--out").arg(&out);
+    if let Some(m) = max_memory {
+        command.args(["--max-memory", m]);
+    }
+    let child = command
+        .stdout(Stdio::null())
+        .stderr(stderr)
+        .spawn()
+        .map_err(|e| format!("{}: {e}", bin.display()))?;
+    // wait4, not Child::wait: it reports the child's own peak memory
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value of the plain C struct.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: the pid is our unwaited child; status and usage are valid
+    // for writes for the duration of the call.
+    let waited = unsafe { libc::wait4(child.id() as i32, &mut status, 0, &mut usage) };
+    let wall = t.elapsed().as_secs_f64();
+    if waited < 0 || !libc::WIFEXITED(status) || libc::WEXITSTATUS(status) != 0 {
+        let msg = std::fs::read_to_string(&err).unwrap_or_default();
+        return Err(format!("iga-contact run, p = {p}, {n}²: {}", msg.trim()));
+    }
+    let summary = std::fs::read_to_string(out.join("summary.toml")).map_err(|e| e.to_string())?;
+    let summary: toml::Table = toml::from_str(&summary).map_err(|e| e.to_string())?;
+    let t = summary
+        .get("timing")
+        .and_then(|t| t.as_table())
+        .ok_or("summary.toml has no [timing]")?;
+    let get = |k: &str| -> Result<f64, String> {
+        t.get(k)
+            .and_then(|v| v.as_float())
+            .ok_or(format!("summary.toml: no timing.{k}"))
+    };
+    let timing = PhaseTimes {
+        parse_and_build: get("parse_and_build")?,
+        contact_setup: get("contact_setup")?,
+        assembly: get("assembly")?,
+        factorisation: get("factorisation")?,
+        iterations: get("iterations")?,
+        post_processing: get("post_processing")?,
+        output: get("output")?,
+        wall: get("wall")?,
+    };
+    let iterations = summary
+        .get("iterations")
+        .and_then(|v| v.as_integer())
+        .ok_or("summary.toml: no iterations")? as usize;
+    Ok(CliRun {
+        max_memory,
+        wall,
+        // ru_maxrss is in kilobytes on Linux
+        peak: usage.ru_maxrss as f64 * 1024.0,
+        timing,
+        iterations,
+    })
+}
+
+/// The budget given when the default memory budget refuses a run: the
+/// estimate is an upper bound (22.9 GiB for p = 2 on 512², whose measured
+/// peak is about 3 GB), so the fallback lifts the refusal, and the measured
+/// peak in the table is the figure to read.
+const FALLBACK_MAX_MEMORY: &str = "256G";
+
+/// The median (by wall time) of `repeats(n)` command-line runs, with the
+/// default memory budget, or [`FALLBACK_MAX_MEMORY`] where it refuses.
+fn cli(p: usize, n: usize) -> Result<CliRun, String> {
+    let bin = iga_contact::report::chapter::cli_binary().map_err(|e| e.to_string())?;
+    let dir = std::env::temp_dir().join(format!("solver_scaling_cli_{}", std::process::id()));
+    let mut runs = Vec::new();
+    let mut max_memory = None;
+    while runs.len() < repeats(n) {
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+        let run = cli_run(&bin, &dir, p, n, max_memory);
+        let _ = std::fs::remove_dir_all(&dir);
+        match run {
+            Err(e) if max_memory.is_none() && e.contains("over the memory budget") => {
+                eprintln!(
+                    "  the default memory budget refuses it: --max-memory {FALLBACK_MAX_MEMORY}"
+                );
+                max_memory = Some(FALLBACK_MAX_MEMORY);
+            }
+            run => runs.push(run?),
+        }
+    }
+    runs.sort_by(|a, b| a.wall.total_cmp(&b.wall));
+    let k = runs.len() / 2;
+    Ok(runs.swap_remove(k))
+}
+
+/// The in-process measurements of a case.
+struct InProcess {
     dofs: usize,
     layer: usize,
     assembly: f64,
-    cholesky: f64,
     condensation: f64,
     iterations: usize,
     iterations_s: f64,
@@ -141,7 +311,16 @@ struct Row {
     total: f64,
     force_error: f64,
     peak: f64,
+}
+
+struct Row {
+    p: usize,
+    n: usize,
+    cholesky: f64,
     route_b: f64,
+    /// `None` above [`IN_PROCESS_UP_TO`].
+    solve: Option<InProcess>,
+    cli: CliRun,
 }
 
 fn child(mode: &str, p: usize, n: usize) -> Result<Vec<f64>, String> {
@@ -164,28 +343,53 @@ fn child(mode: &str, p: usize, n: usize) -> Result<Vec<f64>, String> {
 
 fn measure(p: usize, n: usize) -> Result<Row, String> {
     let c = child("--cholesky", p, n)?;
-    let s = child("--solve", p, n)?;
+    let solve = if n <= IN_PROCESS_UP_TO {
+        let s = child("--solve", p, n)?;
+        Some(InProcess {
+            dofs: s[0] as usize,
+            layer: s[1] as usize,
+            assembly: s[2],
+            condensation: s[3],
+            iterations: s[4] as usize,
+            iterations_s: s[5],
+            recovery: s[6],
+            total: s[2] + s[7],
+            force_error: s[8],
+            peak: s[9],
+        })
+    } else {
+        None
+    };
+    let cli = cli(p, n)?;
+    let within = (cli.timing.sum() - cli.wall).abs() / cli.wall;
+    if n >= PARTS_CHECKED_FROM && within > PARTS_WITHIN {
+        return Err(format!(
+            "p = {p}, {n}²: the [timing] parts add up to {:.3} s, the run took {:.3} s",
+            cli.timing.sum(),
+            cli.wall
+        ));
+    }
     Ok(Row {
         p,
         n,
-        dofs: s[0] as usize,
-        layer: s[1] as usize,
-        assembly: s[2],
         cholesky: c[0],
-        condensation: s[3],
-        iterations: s[4] as usize,
-        iterations_s: s[5],
-        recovery: s[6],
-        total: s[2] + s[7],
-        force_error: s[8],
-        peak: s[9],
         route_b: c[1],
+        solve,
+        cli,
     })
 }
 
-/// The totals (`scaling`) and the split of the time (`phases`).
-fn tables(rows: &[Row]) -> iga_contact::Result<(Table, Table)> {
+/// A cell of an in-process figure, empty where the case ran only through
+/// the command line.
+fn cell(row: &Row, f: impl Fn(&InProcess) -> Cell) -> Cell {
+    row.solve.as_ref().map_or(Cell::Empty, f)
+}
+
+/// The totals (`scaling`), the split of the in-process time (`phases`) and
+/// of the command-line run (`cli`).
+fn tables(rows: &[Row]) -> iga_contact::Result<[Table; 3]> {
     let seconds = |key, header| Column::new(key, header, Unit::Second, Format::Fixed(2));
+    let ratio = |key, header| Column::new(key, header, Unit::None, Format::Times(2));
     let mut scaling = Table::new(vec![
         Column::plain("degree", "p"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
@@ -193,8 +397,11 @@ fn tables(rows: &[Row]) -> iga_contact::Result<(Table, Table)> {
         Column::plain("layer", "layer ℓ"),
         Column::plain("iterations", "its"),
         seconds("total", "total"),
-        Column::new("ratio", "total / Cholesky", Unit::None, Format::Times(2)),
+        ratio("ratio", "total / Cholesky"),
         Column::new("peak_gb", "peak", Unit::Gigabyte, Format::Fixed(2)),
+        seconds("cli_wall", "CLI"),
+        ratio("cli_ratio", "CLI / Cholesky"),
+        Column::new("cli_peak_gb", "CLI peak", Unit::Gigabyte, Format::Fixed(2)),
         Column::new("force_error", "force error", Unit::None, Format::Sci(1)).csv_only(),
     ]);
     let mut phases = Table::new(vec![
@@ -212,30 +419,65 @@ fn tables(rows: &[Row]) -> iga_contact::Result<(Table, Table)> {
         ),
         Column::new("route_b_estimate", "B", Unit::Second, Format::Fixed(1)),
     ]);
+    let mut cli = Table::new(vec![
+        Column::plain("degree", "p"),
+        Column::new("elements", "mesh", Unit::None, Format::Mesh),
+        seconds("parse_and_build", "parse, build"),
+        seconds("contact_setup", "contact"),
+        seconds("assembly", "assemble"),
+        seconds("factorisation", "factorise"),
+        seconds("iterations", "iterate"),
+        seconds("post_processing", "post"),
+        seconds("output", "output"),
+        seconds("parts", "sum"),
+        seconds("wall", "wall"),
+        Column::new("one_cholesky", "Cholesky", Unit::Second, Format::Fixed(2)),
+    ]);
     for r in rows {
+        let t = &r.cli.timing;
         scaling.push(vec![
             r.p.into(),
             r.n.into(),
-            r.dofs.into(),
-            r.layer.into(),
-            r.iterations.into(),
-            r.total.into(),
-            (r.total / r.cholesky).into(),
-            (r.peak * 1e9).into(),
-            r.force_error.into(),
+            cell(r, |s| s.dofs.into()),
+            cell(r, |s| s.layer.into()),
+            r.solve
+                .as_ref()
+                .map_or(r.cli.iterations, |s| s.iterations)
+                .into(),
+            cell(r, |s| s.total.into()),
+            cell(r, |s| (s.total / r.cholesky).into()),
+            cell(r, |s| (s.peak * 1e9).into()),
+            r.cli.wall.into(),
+            (r.cli.wall / r.cholesky).into(),
+            r.cli.peak.into(),
+            cell(r, |s| s.force_error.into()),
         ])?;
         phases.push(vec![
             r.p.into(),
             r.n.into(),
-            r.assembly.into(),
+            cell(r, |s| s.assembly.into()),
             r.cholesky.into(),
-            r.condensation.into(),
-            r.iterations_s.into(),
-            r.recovery.into(),
+            cell(r, |s| s.condensation.into()),
+            cell(r, |s| s.iterations_s.into()),
+            cell(r, |s| s.recovery.into()),
             r.route_b.into(),
         ])?;
+        cli.push(vec![
+            r.p.into(),
+            r.n.into(),
+            t.parse_and_build.into(),
+            t.contact_setup.into(),
+            t.assembly.into(),
+            t.factorisation.into(),
+            t.iterations.into(),
+            t.post_processing.into(),
+            t.output.into(),
+            t.sum().into(),
+            r.cli.wall.into(),
+            r.cholesky.into(),
+        ])?;
     }
-    Ok((scaling, phases))
+    Ok([scaling, phases, cli])
 }
 
 fn main() -> ExitCode {
@@ -297,30 +539,65 @@ fn main() -> ExitCode {
     let written = (|| -> iga_contact::Result<()> {
         let mut chapter =
             Chapter::at(iga_contact::report::chapter::generated_root().join("solver_scaling"))?;
-        let (scaling, phases) = tables(&rows)?;
-        print!("{}\n{}", scaling.to_markdown(), phases.to_markdown());
+        let [scaling, phases, cli] = tables(&rows)?;
+        print!(
+            "{}\n{}\n{}",
+            scaling.to_markdown(),
+            phases.to_markdown(),
+            cli.to_markdown()
+        );
         chapter.table("scaling", &scaling)?;
         chapter.table("phases", &phases)?;
-        for f in ["scaling.csv", "scaling.md", "phases.csv", "phases.md"] {
-            chapter.timed(f);
+        chapter.table("cli", &cli)?;
+        for stem in ["scaling", "phases", "cli"] {
+            chapter.timed(&format!("{stem}.csv"));
+            chapter.timed(&format!("{stem}.md"));
         }
         let facts = chapter.facts();
         // the chapter states when and on what the times were taken
         iga_contact::timing::Machine::here().record(facts, "machine_")?;
+        facts.number("parts_within", PARTS_WITHIN, Format::Percent(0))?;
+        facts.count("parts_checked_from", PARTS_CHECKED_FROM)?;
         for r in &rows {
             let key = format!("p{}_{}", r.p, r.n);
+            let cli = &r.cli;
             facts.timed_number(
-                &format!("{key}_ratio"),
-                r.total / r.cholesky,
+                &format!("{key}_cli_ratio"),
+                cli.wall / r.cholesky,
                 Format::Times(1),
             )?;
-            facts.timed_number(&format!("{key}_total"), r.total, Format::Fixed(1))?;
-            facts.timed_number(&format!("{key}_peak_gb"), r.peak, Format::Fixed(1))?;
-            facts.count(&format!("{key}_iterations"), r.iterations)?;
-            facts.count(&format!("{key}_dofs"), r.dofs)?;
+            facts.timed_number(&format!("{key}_cli_wall"), cli.wall, Format::Fixed(1))?;
+            facts.timed_number(
+                &format!("{key}_cli_peak_gb"),
+                cli.peak / 1e9,
+                Format::Fixed(1),
+            )?;
+            facts.timed_number(
+                &format!("{key}_cli_outside_solve"),
+                (cli.wall - cli.timing.factorisation - cli.timing.iterations) / cli.wall,
+                Format::Percent(0),
+            )?;
+            facts.timed_number(&format!("{key}_cholesky"), r.cholesky, Format::Fixed(1))?;
+            facts.count(&format!("{key}_iterations"), cli.iterations)?;
+            facts.text(
+                &format!("{key}_cli_budget"),
+                cli.max_memory
+                    .map_or("the default memory budget".into(), |m| {
+                        format!("`--max-memory {m}` (the default budget refuses it)")
+                    }),
+            )?;
+            let Some(s) = &r.solve else { continue };
+            facts.timed_number(
+                &format!("{key}_ratio"),
+                s.total / r.cholesky,
+                Format::Times(1),
+            )?;
+            facts.timed_number(&format!("{key}_total"), s.total, Format::Fixed(1))?;
+            facts.timed_number(&format!("{key}_peak_gb"), s.peak, Format::Fixed(1))?;
+            facts.count(&format!("{key}_dofs"), s.dofs)?;
             facts.number(
                 &format!("{key}_force_error"),
-                r.force_error.max(1e-16),
+                s.force_error.max(1e-16),
                 Format::Pow10(0),
             )?;
         }

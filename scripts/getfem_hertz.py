@@ -15,6 +15,20 @@ are the diameter and the three arcs of the crate's half-disk patch
 (bottom 45-degree arc, right 90-degree arc, top 45-degree arc), with the
 nodes placed on the map, so every boundary node lies on the exact circle.
 
+The penalty. GetFEM's Nitsche contact brick forms gamma = gamma0 /
+element_size (src/getfem_contact_and_friction_integral.cc), with
+element_size GetFEM's diameter estimate of the element (sqrt(2) h on a
+square of side h); the crate's Eq. (11) is gamma = F 0.1 E (p+1)(p+2) / h_b
+with h_b the length of the slave boundary element. The script passes gamma0
+as a field constant per element, gamma * element_size of that element, with
+gamma = F 0.1 E (p+1)(p+2) / h_b (h_b = contact length / number of contact
+faces: the faces of the Coons mesh span equal angles), so that the brick's
+gamma is the crate's at the same factor F (`--factor`). It checks this at
+the contact sample points (gamma_deviation: the largest relative difference
+of the brick's gamma0 / element_size from gamma) and reports element_size /
+h_b over the faces (r_min, r_max), the factor by which a single gamma0
+would have missed Eq. (11).
+
 Measured per run (one line of the CSV):
   - p0: the largest contact pressure, max of -sigma_yy (the floor's normal
     stress) sampled at 20 points per boundary element along the contact
@@ -23,15 +37,19 @@ Measured per run (one line of the CSV):
     turns positive along the arc going outwards from x = 0 (linear
     interpolation between the two samples around the change);
   - dofs: displacement DOFs (GetFEM's, before the x = 0 multipliers);
-  - newton_iterations, seconds (wall time of the model set-up and solve,
-    mesh generation excluded).
+  - newton_iterations, converged;
+  - setup_seconds: the model set-up (regions, finite element spaces,
+    integration method, model, bricks), mesh generation excluded;
+  - solve_seconds: GetFEM's Newton with MUMPS (md.solve);
+  - factor, gamma, gamma_deviation, r_min, r_max: the penalty, as above.
 
 Usage:
   /usr/bin/python3 scripts/getfem_hertz.py [--out data/getfem/hertz_getfem.csv]
-      [--ladder q1:8,16,32,64,128,256 q2:8,16,32,64,128] [--theta 1]
+      [--ladder q1:4,8,16,32,64 q2:4,8,16,32,64] [--theta 0] [--factor 1 10]
 
+One run per rung and factor; the CSV holds every run, converged or not.
 Needs Debian's python3-getfem (the system interpreter /usr/bin/python3);
-without it the script says so and exits with status 0.
+without it the script says so and exits with status 3.
 """
 
 import argparse
@@ -107,7 +125,7 @@ def face_points(degree, n):
     return pts
 
 
-def solve(gf, np, degree, n, theta, gamma0_factor):
+def solve(gf, np, degree, n, theta, factor):
     m = mesh(gf, np, degree, n)
     t0 = time.perf_counter()
     border = m.outer_faces()
@@ -138,18 +156,33 @@ def solve(gf, np, degree, n, theta, gamma0_factor):
     md.add_initialized_data('penalty', [PENALTY])
     md.add_mass_brick(mim, 'u', 'penalty')
     md.add_initialized_fem_data('obstacle', mfd, mfd.eval('y'))
-    # GetFEM's Nitsche parameter gamma0 enters as gamma0/h (a stiffness per
-    # unit length, like the crate's Eq. (11) penalty); the crate's empirical
-    # value 0.1 E (p+1)(p+2) by default
-    gamma0 = gamma0_factor * 0.1 * E * (degree + 1) * (degree + 2)
-    md.add_initialized_data('gamma0', [gamma0])
+    # the crate's gamma of Eq. (11) at factor F: gamma0 per element (a
+    # piecewise constant field) times that element's element_size, so that
+    # the brick's gamma0 / element_size is F 0.1 E (p+1)(p+2) / h_b
+    faces = m.region(CONTACT).shape[1]
+    length = gf.asm_generic(mim, 0, '1', CONTACT, md)
+    h_b = length / faces
+    mfg = gf.MeshFem(m, 1)
+    mfg.set_fem(gf.Fem('FEM_QK(2,0)'))
+    sizes_model = gf.Model('real')
+    sizes_model.add_fem_variable('g', mfg)
+    sizes = (gf.asm_generic(mim, 1, 'element_size*Test_g', -1, sizes_model)
+             / gf.asm_generic(mim, 1, 'Test_g', -1, sizes_model))
+    gamma = factor * 0.1 * E * (degree + 1) * (degree + 2) / h_b
+    md.add_initialized_fem_data('gamma0', mfg, gamma * sizes)
+    # the check: the brick's gamma at the contact points, against Eq. (11)
+    pts = np.array(face_points(degree, n)).T
+    formed = np.asarray(md.interpolation('gamma0/element_size', pts, m)).reshape(-1)
+    deviation = float(np.max(np.abs(formed / gamma - 1.0)))
+    on_faces = np.asarray(md.interpolation('element_size', pts, m)).reshape(-1) / h_b
     neumann = md.Neumann_term('u', CONTACT)
     md.add_Nitsche_contact_with_rigid_obstacle_brick(
         mim, 'u', neumann, 'obstacle', 'gamma0', CONTACT, theta)
+    t1 = time.perf_counter()
     # MUMPS explicitly: for large systems 'auto' picks GMRES with ILUT,
     # which fails here (tiny pivots) and runs for tens of minutes
     iterations, converged = md.solve('max_res', 1e-8, 'max_iter', 50, 'lsolver', 'mumps')
-    seconds = time.perf_counter() - t0
+    t2 = time.perf_counter()
     pts = np.array(face_points(degree, n)).T
     syy = md.interpolation('(lambda*Trace(Grad_u)*Id(2) + 2*mu*Sym(Grad_u))(2,2)', pts, m)
     gap = md.interpolation('X(2) + u(2)', pts, m)
@@ -169,59 +202,72 @@ def solve(gf, np, degree, n, theta, gamma0_factor):
         'half_width': a,
         'newton_iterations': int(iterations),
         'converged': bool(converged),
-        'seconds': seconds,
-        'gamma0': gamma0,
+        'setup_seconds': t1 - t0,
+        'solve_seconds': t2 - t1,
+        'factor': factor,
+        'gamma': gamma,
+        'deviation': deviation,
+        'r_min': float(np.min(on_faces)),
+        'r_max': float(np.max(on_faces)),
     }
+
+
+COLUMNS = ('code,element,degree,elements,dofs,factor,gamma,gamma_deviation,r_min,r_max,p0,half_width,'
+           'newton_iterations,converged,setup_seconds,solve_seconds,getfem_version,date')
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--out', default='data/getfem/hertz_getfem.csv')
-    ap.add_argument('--ladder', nargs='*',
-                    default=['q1:8,16,32,64,128,256', 'q2:8,16,32,64,128'])
-    # the paper's non-symmetric variant; GetFEM's Newton converges on every
-    # rung with gamma0 ten times the crate's penalty (with the crate's value
-    # it fails to converge from Q2 16^2 on, for theta = 1 and 0 alike)
+    ap.add_argument('--ladder', nargs='*', default=['q1:4,8,16,32,64', 'q2:4,8,16,32,64'])
+    # the paper's non-symmetric variant
     ap.add_argument('--theta', type=float, default=0.0)
-    ap.add_argument('--gamma0-factor', type=float, default=10.0)
+    # the penalty factors F of Eq. (11): 1 is the paper's
+    ap.add_argument('--factor', type=float, nargs='*', default=[1.0, 10.0])
     args = ap.parse_args()
     try:
         import getfem as gf
         import numpy as np
     except ImportError:
         print('getfem_hertz: GetFEM is not installed (apt-get install python3-getfem, '
-              'run with /usr/bin/python3): skipped')
-        return 0
+              'run with /usr/bin/python3)', file=sys.stderr)
+        return 3
+    gf.util_trace_level(0)
+    gf.util_warning_level(0)
     version = gf.getfem_env('release')
-    date = datetime.date.today().isoformat()
+    date = datetime.datetime.now(datetime.timezone.utc).date().isoformat()
     rows = []
-    for rung in args.ladder:
-        name, meshes = rung.split(':')
-        degree = {'q1': 1, 'q2': 2}[name.lower()]
-        for n in (int(v) for v in meshes.split(',')):
-            r = solve(gf, np, degree, n, args.theta, args.gamma0_factor)
-            print('Q%d %4d^2: %7d DOFs, p0 = %.6e, a = %.6e, %d Newton iterations%s, %.2f s'
-                  % (degree, n, r['dofs'], r['p0'], r['half_width'], r['newton_iterations'],
-                     '' if r['converged'] else ' (NOT converged)', r['seconds']), flush=True)
-            rows.append((degree, n, r))
+    for factor in args.factor:
+        for rung in args.ladder:
+            name, meshes = rung.split(':')
+            degree = {'q1': 1, 'q2': 2}[name.lower()]
+            for n in (int(v) for v in meshes.split(',')):
+                r = solve(gf, np, degree, n, args.theta, factor)
+                print('F = %g, Q%d %4d^2: %7d DOFs, p0 = %.6e, a = %.6e, %d Newton iterations%s, '
+                      'set-up %.3f s, solve %.3f s'
+                      % (factor, degree, n, r['dofs'], r['p0'], r['half_width'],
+                         r['newton_iterations'], '' if r['converged'] else ' (NOT converged)',
+                         r['setup_seconds'], r['solve_seconds']), file=sys.stderr, flush=True)
+                rows.append((degree, n, r))
     import os
     os.makedirs(os.path.dirname(args.out) or '.', exist_ok=True)
     tmp = args.out + '.tmp'
     with open(tmp, 'w') as f:
         f.write('# GetFEM %s, %s; Hertz half disk R = 0.2, E = 2e7, nu = 0.1, plane strain, '
                 'body force (0, -1.3e6); Nitsche contact brick, theta = %g, '
-                'gamma0 = %g x 0.1 E (p+1)(p+2); p0 = max(-sigma_yy) and a = first zero of '
-                'the deformed gap y + u_y, sampled at %d points per contact face; seconds = '
-                'model set-up + solve\n' % (version, date, args.theta, args.gamma0_factor, SAMPLES))
-        f.write('code,element,degree,elements,dofs,p0,half_width,newton_iterations,converged,'
-                'seconds,getfem_version,date\n')
+                'gamma0 = gamma element_size per element, gamma = F 0.1 E (p+1)(p+2) / h_b '
+                '(the crate\'s Eq. (11) at factor F); '
+                'p0 = max(-sigma_yy) and a = first zero of the deformed gap y + u_y, sampled at '
+                '%d points per contact face\n' % (version, date, args.theta, SAMPLES))
+        f.write(COLUMNS + '\n')
         for degree, n, r in rows:
-            f.write('getfem,Q%d,%d,%d,%d,%.9e,%.9e,%d,%s,%.4f,%s,%s\n'
-                    % (degree, degree, n, r['dofs'], r['p0'], r['half_width'],
+            f.write('getfem,Q%d,%d,%d,%d,%g,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%s,%.6f,%.6f,%s,%s\n'
+                    % (degree, degree, n, r['dofs'], r['factor'], r['gamma'], r['deviation'],
+                       r['r_min'], r['r_max'], r['p0'], r['half_width'],
                        r['newton_iterations'], 'true' if r['converged'] else 'false',
-                       r['seconds'], version, date))
+                       r['setup_seconds'], r['solve_seconds'], version, date))
     os.replace(tmp, args.out)
-    print('written to %s' % args.out)
+    print('written to %s' % args.out, file=sys.stderr)
     return 0
 
 

@@ -15,6 +15,7 @@ use iga_contact::report::atomic::{self, OutputSet};
 use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
 use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::{PenaltyWarning, Scene};
+use iga_contact::timing::Stopwatch;
 use iga_contact::Error;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -102,6 +103,9 @@ fn budget(max_memory: Option<String>) -> Result<Budget, Failure> {
 }
 
 fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> Result<(), Failure> {
+    // the run's clock starts before the scene is read: `[timing]` of
+    // summary.toml charges the parse to its first phase
+    let clock = Stopwatch::start();
     let fail = |e: Error| Failure::from_error(Some(scene_path), &e);
     let budget = budget(max_memory)?;
     let scene = Scene::load(scene_path).map_err(fail)?;
@@ -111,7 +115,7 @@ fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> R
             .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
         Path::new("out").join(stem)
     });
-    let report = match scene.run_within(&out, &budget) {
+    let report = match scene.run_timed(&out, &budget, clock) {
         Ok(report) => report,
         Err(e) => {
             // A failed solve has no active set to judge; where the bodies

@@ -70,15 +70,24 @@ impl Problem {
         loads: &[Load],
         pairs: Vec<ContactPair>,
     ) -> Result<Self> {
-        let n = map.n_free();
-        if n == 0 {
-            return Err(Error::invalid(
-                "supports",
-                "all DOFs",
-                "every degree of freedom is prescribed",
-            ));
-        }
+        Self::require_free_dofs(&map)?;
         let points = contact_points(&bodies, &map, &pairs)?;
+        Self::with_points(bodies, map, loads, pairs, points)
+    }
+
+    /// As [`Problem::new`], with the contact points of `pairs` already
+    /// built ([`contact_points`] of the same bodies, map and pairs): a
+    /// caller that needed them first (the rigid-mode check of a scene)
+    /// does not build them, with an element stiffness and an eigenvalue
+    /// problem per slave element, twice.
+    pub fn with_points(
+        bodies: Vec<Body>,
+        map: DofMap,
+        loads: &[Load],
+        pairs: Vec<ContactPair>,
+        points: Vec<ContactPoint>,
+    ) -> Result<Self> {
+        Self::require_free_dofs(&map)?;
         // One pattern for everything: the bulk stiffness is stored in the
         // kernels' pattern, with zeros where only contact couples two DOFs
         // (two bodies), so every kernel has the same symbolic structure.
@@ -105,6 +114,17 @@ impl Problem {
             rhs,
             k,
         })
+    }
+
+    fn require_free_dofs(map: &DofMap) -> Result<()> {
+        if map.n_free() == 0 {
+            return Err(Error::invalid(
+                "supports",
+                "all DOFs",
+                "every degree of freedom is prescribed",
+            ));
+        }
+        Ok(())
     }
 
     pub fn n(&self) -> usize {

@@ -45,12 +45,12 @@ use crate::resources::{human_bytes, human_count, BodySize, Budget, Estimate, Fac
 use crate::solver::history::History;
 use crate::solver::{self, Factorisation, SolverOptions};
 use crate::space::Space;
+use crate::timing::{Phase, PhaseTimes, Stopwatch};
 use crate::wellposed;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Largest spline degree a scene may ask for.
 pub const MAX_DEGREE: usize = 10;
@@ -321,6 +321,8 @@ pub struct RunReport {
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
+    /// The same, split by phase ([`PhaseTimes`]).
+    pub timing: PhaseTimes,
     /// What the solution may not be ([`solver::Warning`]): a converged
     /// run is reported with them, never silently.
     pub warnings: Vec<solver::Warning>,
@@ -371,6 +373,9 @@ struct Summary<'a> {
     /// The solver options as TOML (a `usize::MAX` limit, which TOML cannot
     /// hold, is written as the largest TOML integer).
     solver: toml::Value,
+    /// Seconds per phase of the run up to this file, and the wall time;
+    /// the file's own writing and the commit of the outputs come after.
+    timing: PhaseTimes,
 }
 
 /// What `summary.toml` reports of one contact pair, measured by
@@ -1236,6 +1241,16 @@ impl Scene {
 // Building and running
 // ---------------------------------------------------------------------------
 
+/// Whether [`Scene::discretise`] evaluates the map of every body at every
+/// quadrature point. The assembly evaluates it there anyway, so a run
+/// checks only when the assembly fails, for the message; a check, which
+/// assembles nothing, checks up front.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum MapCheck {
+    EveryPoint,
+    OnFailure,
+}
+
 /// The discretised scene before anything of the size of the system is
 /// assembled: bodies, DOF numbering, loads and contact pairs.
 struct Discrete {
@@ -1243,11 +1258,6 @@ struct Discrete {
     map: DofMap,
     loads: Vec<Load>,
     pairs: Vec<ContactPair>,
-}
-
-/// A built scene: the problem and the loads it was assembled with.
-struct Built {
-    problem: Problem,
 }
 
 /// What [`Scene::check`] found: the scene is valid, fits the memory
@@ -1468,10 +1478,11 @@ impl Scene {
         Ok(Estimate::new(sizes, pairs, vtu, factoring))
     }
 
-    /// Refines every body and checks its map at every quadrature point
-    /// (naming the body where it folds), numbers the DOFs and resolves
-    /// loads and contact pairs; assembles nothing.
-    fn discretise(&self) -> Result<Discrete> {
+    /// Refines every body (with [`MapCheck::EveryPoint`], checking its map
+    /// at every quadrature point and naming the body where it folds),
+    /// numbers the DOFs and resolves loads and contact pairs; assembles
+    /// nothing.
+    fn discretise(&self, check: MapCheck) -> Result<Discrete> {
         self.validate()?;
         let names = self.body_index();
         let idx = |name: &str| names[name];
@@ -1479,10 +1490,12 @@ impl Scene {
         for (i, b) in self.bodies.iter().enumerate() {
             let space = Space::new(self.body_patch(i)?, b.quadrature)
                 .map_err(|e| in_body(e, i, &b.name, ""))?;
-            for e in &space.elements {
-                space
-                    .quadrature(e)
-                    .map_err(|e| in_body(e, i, &b.name, ""))?;
+            if check == MapCheck::EveryPoint {
+                for e in &space.elements {
+                    space
+                        .quadrature(e)
+                        .map_err(|e| in_body(e, i, &b.name, ""))?;
+                }
             }
             bodies.push(Body {
                 name: b.name.clone(),
@@ -1548,26 +1561,46 @@ impl Scene {
         })
     }
 
-    fn assemble(&self) -> Result<Built> {
+    /// Discretises, builds the contact points and checks the rigid modes on
+    /// them (before the assembly: the points cost only the boundary), then
+    /// assembles the problem on those same points, with the time of each
+    /// step charged to `clock`.
+    fn assemble(&self, clock: &mut Stopwatch) -> Result<Problem> {
         let Discrete {
             bodies,
             map,
             loads,
             pairs,
-        } = self.discretise()?;
-        // Before the assembly: the contact points cost only the boundary.
-        let points = contact_points(&bodies, &map, &pairs)?;
-        wellposed::check_rigid_modes(&bodies, &map, &points)?;
-        drop(points);
-        let problem = Problem::new(bodies, map, &loads, pairs)?;
-        Ok(Built { problem })
+        } = self.discretise(MapCheck::OnFailure)?;
+        clock.lap(Phase::ParseAndBuild);
+        let points = contact_points(&bodies, &map, &pairs)
+            .and_then(|points| {
+                wellposed::check_rigid_modes(&bodies, &map, &points)?;
+                Ok(points)
+            })
+            .map_err(|e| self.map_error_or(e))?;
+        clock.lap(Phase::ContactSetup);
+        let problem = Problem::with_points(bodies, map, &loads, pairs, points)
+            .map_err(|e| self.map_error_or(e))?;
+        clock.lap(Phase::Assembly);
+        Ok(problem)
+    }
+
+    /// A failure after a discretisation without the map check: the map's
+    /// error (naming the body where it folds) when there is one, as the
+    /// check up front would have reported it, else `e`.
+    fn map_error_or(&self, e: Error) -> Error {
+        match self.discretise(MapCheck::EveryPoint) {
+            Err(map) => map,
+            Ok(_) => e,
+        }
     }
 
     /// Validates the scene and assembles its [`Problem`] (no solve),
     /// rejecting rigid motions nothing holds
     /// ([`wellposed::check_rigid_modes`]).
     pub fn build(&self) -> Result<Problem> {
-        Ok(self.assemble()?.problem)
+        self.assemble(&mut Stopwatch::start())
     }
 
     /// Everything [`Scene::run`] checks before it solves — validity, the
@@ -1577,7 +1610,7 @@ impl Scene {
     pub fn check(&self, budget: &Budget) -> Result<CheckReport> {
         let estimate = self.estimate()?;
         estimate.check(budget, "output.vtu_subdivisions")?;
-        let d = self.discretise()?;
+        let d = self.discretise(MapCheck::EveryPoint)?;
         let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
         let stability = post::first_touch_stability(&points, d.pairs.len());
@@ -1608,7 +1641,19 @@ impl Scene {
     /// as a whole, so a failed or interrupted run leaves the earlier
     /// results exactly as they were.
     pub fn run_within(&self, out_dir: impl AsRef<Path>, budget: &Budget) -> Result<RunReport> {
-        let start = Instant::now();
+        self.run_timed(out_dir, budget, Stopwatch::start())
+    }
+
+    /// As [`Scene::run_within`], charging the time of every phase to
+    /// `clock` (started by the caller, e.g. before it read the scene):
+    /// the phases are reported in [`RunReport::timing`] and in the
+    /// `[timing]` table of `summary.toml`.
+    pub fn run_timed(
+        &self,
+        out_dir: impl AsRef<Path>,
+        budget: &Budget,
+        mut clock: Stopwatch,
+    ) -> Result<RunReport> {
         self.estimate()?.check(budget, "output.vtu_subdivisions")?;
         let o = &self.output;
         let set = if o.is_empty() {
@@ -1616,8 +1661,12 @@ impl Scene {
         } else {
             Some(OutputSet::begin_expecting(out_dir, &o.file_names())?)
         };
-        let Built { problem } = self.assemble()?;
+        let problem = self.assemble(&mut clock)?;
         let solution = solver::solve(&problem, &self.solver)?;
+        let solve = clock.take();
+        let factorisation = solution.phases.condensation.min(solve);
+        clock.charge(Phase::Factorisation, factorisation);
+        clock.charge(Phase::Iterations, solve - factorisation);
         let full = &solution.full;
         let contact_force = post::contact_resultant(&problem, full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
@@ -1625,14 +1674,16 @@ impl Scene {
         let penalty_warnings = PenaltyWarning::of(self, &stability, true);
         let history = &solution.history;
         let title = self.title.as_deref().unwrap_or("scene");
-
         let applied_force = if o.summary {
             Some(post::applied_resultant(&problem)?.map(no_negative_zero))
         } else {
             None
         };
         let files = match set {
-            None => Vec::new(),
+            None => {
+                clock.lap(Phase::PostProcessing);
+                Vec::new()
+            }
             Some(mut set) => {
                 let outputs = Outputs {
                     title,
@@ -1642,10 +1693,13 @@ impl Scene {
                     stability: &stability,
                     warnings: &penalty_warnings,
                 };
-                self.stage_outputs(&mut set, &problem, &solution, &outputs)?;
-                set.commit()?
+                self.stage_outputs(&mut set, &problem, &solution, &outputs, &mut clock)?;
+                let files = set.commit()?;
+                clock.lap(Phase::Output);
+                files
             }
         };
+        let timing = clock.times();
         Ok(RunReport {
             dofs: problem.n(),
             iterations: history.len(),
@@ -1656,18 +1710,22 @@ impl Scene {
             applied_force,
             penalty_warnings,
             files,
-            seconds: start.elapsed().as_secs_f64(),
+            seconds: timing.wall,
+            timing,
             warnings: solution.warnings.clone(),
         })
     }
 
-    /// Computes and stages every requested output.
+    /// Computes and stages every requested output: first what they are
+    /// computed from (charged to post-processing), then the files (charged
+    /// to output, up to the summary, which reports the times so far).
     fn stage_outputs(
         &self,
         set: &mut OutputSet,
         problem: &Problem,
         solution: &solver::Solution,
         out: &Outputs,
+        clock: &mut Stopwatch,
     ) -> Result<()> {
         let Outputs {
             title,
@@ -1685,6 +1743,25 @@ impl Scene {
         } else {
             None
         };
+        let contact = match (applied_force, &profile) {
+            (Some(_), Some(profile)) => post::contact_resultants(problem, full)
+                .iter()
+                .enumerate()
+                .map(|(k, &f)| {
+                    let m = profile.measures(k);
+                    PairSummary {
+                        p0: no_negative_zero(m.p0),
+                        half_width: no_negative_zero(m.half_width),
+                        zones: m.zones,
+                        contact_force: f.map(no_negative_zero),
+                        penalty_below_bound_points: stability[k].active_below,
+                        min_penalty_ratio: stability[k].min_active_ratio,
+                    }
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        clock.lap(Phase::PostProcessing);
         if let (true, Some(profile)) = (o.figures, &profile) {
             let pairs = self.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
@@ -1729,22 +1806,8 @@ impl Scene {
             drop(mesh);
             set.stage(files::VTU, xml.as_bytes())?;
         }
-        if let (Some(applied_force), Some(profile)) = (applied_force, &profile) {
-            let contact = post::contact_resultants(problem, full)
-                .iter()
-                .enumerate()
-                .map(|(k, &f)| {
-                    let m = profile.measures(k);
-                    PairSummary {
-                        p0: no_negative_zero(m.p0),
-                        half_width: no_negative_zero(m.half_width),
-                        zones: m.zones,
-                        contact_force: f.map(no_negative_zero),
-                        penalty_below_bound_points: stability[k].active_below,
-                        min_penalty_ratio: stability[k].min_active_ratio,
-                    }
-                })
-                .collect();
+        if let Some(applied_force) = applied_force {
+            clock.lap(Phase::Output);
             let summary = Summary {
                 title,
                 dofs: problem.n(),
@@ -1757,6 +1820,7 @@ impl Scene {
                 applied_force,
                 contact,
                 solver: solver_table(&self.solver),
+                timing: clock.times(),
             };
             let text = toml::to_string(&summary)
                 .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;

@@ -3,6 +3,7 @@
 //! only ratios of times measured in one run.
 
 use crate::error::Result;
+use serde::Serialize;
 use std::time::Instant;
 
 /// A value and how long it took to compute.
@@ -31,6 +32,123 @@ pub fn median_time<T>(repeats: usize, mut f: impl FnMut() -> Result<T>) -> Resul
         seconds: times[times.len() / 2],
         repeats: times.len(),
     })
+}
+
+/// The phases of a run of a scene, in the order they happen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Reading and validating the scene, the memory estimate, the output
+    /// folder check, the refinement of every body and the DOF numbering.
+    ParseAndBuild,
+    /// The contact points (projection, gap, penalty, and the trace-inverse
+    /// constant of every slave element) and the rigid-mode check on them.
+    ContactSetup,
+    /// The bulk stiffness and the loads.
+    Assembly,
+    /// The factorisation of the bulk before the iterations and its
+    /// condensation on the contact layer (0 when the solver factorises a
+    /// kernel per iteration instead: that time is in the iterations).
+    Factorisation,
+    /// The rest of the solve: the iterations, the recovery of the body from
+    /// the layer, and the solver's checks before and after.
+    Iterations,
+    /// What the outputs are computed from: resultants, active set,
+    /// penalty stability, the dense pressure profile and its measures.
+    PostProcessing,
+    /// Drawing, formatting and staging the output files.
+    Output,
+}
+
+/// Wall time of each [`Phase`] of one run and of the whole run, in
+/// seconds: the `[timing]` table of `summary.toml`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct PhaseTimes {
+    pub parse_and_build: f64,
+    pub contact_setup: f64,
+    pub assembly: f64,
+    pub factorisation: f64,
+    pub iterations: f64,
+    pub post_processing: f64,
+    pub output: f64,
+    /// From the start of the [`Stopwatch`] to the moment the times were
+    /// read, measured on its own clock (not summed from the phases).
+    pub wall: f64,
+}
+
+impl PhaseTimes {
+    /// The sum of the phases, to compare with [`PhaseTimes::wall`].
+    pub fn sum(&self) -> f64 {
+        self.parse_and_build
+            + self.contact_setup
+            + self.assembly
+            + self.factorisation
+            + self.iterations
+            + self.post_processing
+            + self.output
+    }
+
+    fn slot(&mut self, phase: Phase) -> &mut f64 {
+        match phase {
+            Phase::ParseAndBuild => &mut self.parse_and_build,
+            Phase::ContactSetup => &mut self.contact_setup,
+            Phase::Assembly => &mut self.assembly,
+            Phase::Factorisation => &mut self.factorisation,
+            Phase::Iterations => &mut self.iterations,
+            Phase::PostProcessing => &mut self.post_processing,
+            Phase::Output => &mut self.output,
+        }
+    }
+}
+
+/// Charges wall time to the phases of a run: every interval between two
+/// laps goes to exactly one phase, so the phases cover the run without gap
+/// or overlap.
+#[derive(Clone, Debug)]
+pub struct Stopwatch {
+    start: Instant,
+    last: Instant,
+    times: PhaseTimes,
+}
+
+impl Stopwatch {
+    /// Starts the run's clock now (the command line starts it before it
+    /// reads the scene).
+    pub fn start() -> Self {
+        let now = Instant::now();
+        Self {
+            start: now,
+            last: now,
+            times: PhaseTimes::default(),
+        }
+    }
+
+    /// The seconds since the last lap, which then starts anew; the caller
+    /// charges them (possibly split) with [`Stopwatch::charge`].
+    pub fn take(&mut self) -> f64 {
+        let now = Instant::now();
+        let s = now.duration_since(self.last).as_secs_f64();
+        self.last = now;
+        s
+    }
+
+    /// Adds `seconds` to `phase`.
+    pub fn charge(&mut self, phase: Phase, seconds: f64) {
+        *self.times.slot(phase) += seconds;
+    }
+
+    /// Charges the time since the last lap to `phase`.
+    pub fn lap(&mut self, phase: Phase) {
+        let s = self.take();
+        self.charge(phase, s);
+    }
+
+    /// The times so far, with the wall time up to now.
+    pub fn times(&self) -> PhaseTimes {
+        PhaseTimes {
+            wall: self.start.elapsed().as_secs_f64(),
+            ..self.times
+        }
+    }
 }
 
 /// When and on what a measurement ran: what a chapter states about results
@@ -113,6 +231,29 @@ pub fn utc_date(t: std::time::SystemTime) -> String {
 mod tests {
     use super::*;
     use std::time::{Duration, UNIX_EPOCH};
+
+    #[test]
+    fn the_phases_cover_the_wall_time() {
+        let mut clock = Stopwatch::start();
+        let busy = |ms: u64| std::thread::sleep(Duration::from_millis(ms));
+        busy(20);
+        clock.lap(Phase::ParseAndBuild);
+        busy(10);
+        let solve = clock.take();
+        clock.charge(Phase::Factorisation, 0.25 * solve);
+        clock.charge(Phase::Iterations, 0.75 * solve);
+        busy(5);
+        clock.lap(Phase::Output);
+        let t = clock.times();
+        assert!(t.parse_and_build >= 0.020 && t.output >= 0.005, "{t:?}");
+        assert_eq!(t.factorisation * 3.0, t.iterations);
+        assert_eq!(t.contact_setup + t.assembly + t.post_processing, 0.0);
+        // every interval is charged once: the sum misses only the time
+        // between the last lap and the reading of the wall clock (two
+        // statements; the margin is for a descheduled thread)
+        assert!(t.sum() <= t.wall && t.wall - t.sum() < 0.1, "{t:?}");
+        assert!(t.sum() >= 0.035, "{t:?}");
+    }
 
     #[test]
     fn dates_of_known_instants() {

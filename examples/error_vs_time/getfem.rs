@@ -1,16 +1,21 @@
-//! The peer: GetFEM's runs of the same Hertz problem, read from the CSV
-//! that `scripts/getfem_hertz.py` wrote, and GetFEM's estimator of p₀
-//! applied to one of our solutions, so that both codes' p₀ are measured
-//! against the same reference solution with their own estimator.
+//! The peer: GetFEM's runs of the same Hertz problem, made by
+//! `scripts/getfem_hertz.py` as a child process and read back from the CSV
+//! it writes, and GetFEM's estimators applied to our solutions, so that
+//! both codes are measured against the same reference solution with the
+//! same estimator.
 
-use iga_contact::contact::Role;
+use iga_contact::contact::{ContactPoint, Role};
 use iga_contact::error::{Error, Result};
 use iga_contact::post;
 use iga_contact::problem::Problem;
 use std::path::Path;
+use std::process::Command;
 
-/// Where the committed GetFEM runs are, from the crate's root.
+/// The script, and where it writes its CSV, from the crate's root.
+pub const SCRIPT: &str = "scripts/getfem_hertz.py";
 pub const CSV: &str = "data/getfem/hertz_getfem.csv";
+/// The interpreter Debian's `python3-getfem` installs for.
+pub const PYTHON: &str = "/usr/bin/python3";
 
 // ANCHOR: peer_run
 /// One GetFEM run (one line of the CSV).
@@ -21,18 +26,26 @@ pub struct PeerRun {
     /// Elements per direction.
     pub elements: usize,
     pub dofs: usize,
+    /// The factor F of Eq. (11) the script gave GetFEM's brick.
+    pub factor: f64,
+    /// The largest relative difference of the brick's γ from Eq. (11) at
+    /// the contact sample points.
+    pub gamma_deviation: f64,
     /// max(−σ_yy) on 20 points per contact face (Pa).
     pub p0: f64,
     /// The first zero of the deformed gap y + u_y along the arc (m).
     pub half_width: f64,
     pub newton_iterations: usize,
-    /// Model set-up and solve, mesh generation excluded (s).
-    pub seconds: f64,
+    pub converged: bool,
+    /// The model set-up (spaces, integration, bricks), mesh excluded (s).
+    pub setup_seconds: f64,
+    /// GetFEM's Newton with MUMPS (s).
+    pub solve_seconds: f64,
 }
 // ANCHOR_END: peer_run
 
 /// The CSV: its comment line (how the runs were made), the GetFEM version
-/// and date of the runs, and the converged runs.
+/// and date of the runs, and every run.
 #[derive(Clone, Debug)]
 pub struct Peer {
     pub comment: String,
@@ -41,9 +54,45 @@ pub struct Peer {
     pub runs: Vec<PeerRun>,
 }
 
-/// Reads [`CSV`]. Every problem is an error naming the file, the line, the
-/// column and the value; a run GetFEM did not converge is an error too,
-/// since its p₀ and a are not results.
+/// Whether GetFEM can be imported by [`PYTHON`].
+pub fn available() -> bool {
+    Command::new(PYTHON)
+        .args(["-c", "import getfem"])
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Runs the script on `ladder` (elements per direction, for Q1 and Q2) at
+/// the penalty factors `factors`, and reads what it wrote.
+pub fn run(ladder: &[usize], factors: &[f64]) -> Result<Peer> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let meshes: Vec<String> = ladder.iter().map(|n| n.to_string()).collect();
+    let meshes = meshes.join(",");
+    let factors: Vec<String> = factors.iter().map(|f| f.to_string()).collect();
+    let out = Command::new(PYTHON)
+        .current_dir(root)
+        .arg(SCRIPT)
+        .args(["--out", CSV, "--ladder"])
+        .arg(format!("q1:{meshes}"))
+        .arg(format!("q2:{meshes}"))
+        .arg("--factor")
+        .args(&factors)
+        .output()
+        .map_err(|source| Error::Io {
+            path: PYTHON.into(),
+            source,
+        })?;
+    if !out.status.success() {
+        return Err(Error::invalid(
+            SCRIPT,
+            format!("exit status {}", out.status),
+            String::from_utf8_lossy(&out.stderr).trim().to_string(),
+        ));
+    }
+    load()
+}
+
+/// Reads [`CSV`].
 pub fn load() -> Result<Peer> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(CSV);
     let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
@@ -53,24 +102,30 @@ pub fn load() -> Result<Peer> {
     parse(&text)
 }
 
-const COLUMNS: [&str; 12] = [
+const COLUMNS: [&str; 18] = [
     "code",
     "element",
     "degree",
     "elements",
     "dofs",
+    "factor",
+    "gamma",
+    "gamma_deviation",
+    "r_min",
+    "r_max",
     "p0",
     "half_width",
     "newton_iterations",
     "converged",
-    "seconds",
+    "setup_seconds",
+    "solve_seconds",
     "getfem_version",
     "date",
 ];
 
-/// Parses the CSV text (see [`load`]). The file has no quoted fields, so a
-/// split at commas reads it exactly; a CSV crate would add a dependency for
-/// one file of twelve plain columns.
+/// Parses the CSV text (see [`load`]): every problem is an error naming
+/// the file, the line, the column and the value. The file has no quoted
+/// fields, so a split at commas reads it exactly.
 pub fn parse(text: &str) -> Result<Peer> {
     let bad = |line: usize, column: &str, value: &str, why: &str| {
         Error::invalid(
@@ -118,8 +173,8 @@ pub fn parse(text: &str) -> Result<Peer> {
         let number = |c: usize| -> Result<f64> {
             let v = field(c);
             match v.parse::<f64>() {
-                Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-                _ => Err(bad(n, COLUMNS[c], v, "not a finite non-negative number")),
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(bad(n, COLUMNS[c], v, "not a finite number")),
             }
         };
         let count = |c: usize| -> Result<usize> {
@@ -130,33 +185,33 @@ pub fn parse(text: &str) -> Result<Peer> {
         if field(0) != "getfem" {
             return Err(bad(n, "code", field(0), "expected `getfem`"));
         }
-        match field(8) {
-            "true" => {}
-            "false" => return Err(bad(n, "converged", "false", "a run that did not converge")),
+        let converged = match field(13) {
+            "true" => true,
+            "false" => false,
             v => return Err(bad(n, "converged", v, "expected true or false")),
-        }
+        };
         let run = PeerRun {
             degree: count(2)?,
             elements: count(3)?,
             dofs: count(4)?,
-            p0: number(5)?,
-            half_width: number(6)?,
-            newton_iterations: count(7)?,
-            seconds: number(9)?,
+            factor: number(5)?,
+            gamma_deviation: number(7)?,
+            p0: number(10)?,
+            half_width: number(11)?,
+            newton_iterations: count(12)?,
+            converged,
+            setup_seconds: number(14)?,
+            solve_seconds: number(15)?,
         };
         if field(1) != format!("Q{}", run.degree) {
             return Err(bad(n, "element", field(1), "does not match the degree"));
         }
-        if run.p0 == 0.0 || run.half_width == 0.0 {
-            return Err(bad(n, "p0", field(5), "p0 and half_width must be positive"));
-        }
-        (version, date) = (field(10).to_string(), field(11).to_string());
+        (version, date) = (field(16).to_string(), field(17).to_string());
         runs.push(run);
     }
     if runs.is_empty() {
         return Err(bad(header_line, "(all)", "", "no runs"));
     }
-    runs.sort_by_key(|r| (r.degree, r.elements));
     Ok(Peer {
         comment,
         version,
@@ -166,22 +221,54 @@ pub fn parse(text: &str) -> Result<Peer> {
 }
 
 // ANCHOR: peer_estimators
-/// The GetFEM script's estimator of p₀ applied to our solution `full` of
-/// `problem`: max(−σ_n) on 20 Gauss points per contact element (the
-/// floor's normal is −y, so σ_n = σ_yy there).
-///
-/// Its estimator of a, the first zero of the deformed gap, is not applied
-/// to our solutions: Nitsche's method keeps the gap inside the contact
-/// zone only as small as the discretisation error over γ, not of one sign,
-/// and on our solutions it is positive from the first points on, so that
-/// "first zero" lands next to x = 0. GetFEM's a is therefore compared with
-/// our estimator's.
-pub fn peak_pressure(problem: &Problem, full: &[f64]) -> Result<f64> {
-    let points = post::dense_contact_points(problem, 20)?;
-    Ok(points
-        .iter()
+/// The slave points of pair 0 on 20 Gauss points per contact element,
+/// ordered by x: where the GetFEM script samples its solutions. Where a
+/// coarse Lagrange interpolant of the disk folds near the end of the arc
+/// (Q2 on 4²), fewer points per element, as the dense profile does.
+fn samples(problem: &Problem) -> Result<Vec<ContactPoint>> {
+    let mut found = Err(Error::Geometry("no sample count".into()));
+    for per_element in [20, 16, 12, 10, 8, 6, 4] {
+        found = post::dense_contact_points(problem, per_element);
+        if !matches!(found, Err(Error::Geometry(_))) {
+            break;
+        }
+    }
+    let mut points: Vec<ContactPoint> = found?
+        .into_iter()
         .filter(|c| c.role == Role::Slave && c.pair == 0)
+        .collect();
+    points.sort_by(|a, b| a.x[0].total_cmp(&b.x[0]));
+    Ok(points)
+}
+
+/// The GetFEM script's estimator of p₀ applied to our solution `full` of
+/// `problem`: max(−σ_n) on its sample points (the floor's normal is −y, so
+/// σ_n = σ_yy there).
+pub fn peak_pressure(problem: &Problem, full: &[f64]) -> Result<f64> {
+    Ok(samples(problem)?
+        .iter()
         .map(|c| -c.normal_stress_and_jump(full).0)
         .fold(f64::NEG_INFINITY, f64::max))
+}
+
+/// The GetFEM script's estimator of a applied to our solution: the first
+/// x, going outwards from x = 0, where the deformed gap g₀ − ⟦u_n⟧ turns
+/// from ≤ 0 to > 0 (linear between the two samples), and the number of
+/// samples before it whose gap is negative (overlap).
+pub fn first_gap_zero(problem: &Problem, full: &[f64]) -> Result<(f64, usize)> {
+    let points = samples(problem)?;
+    let gap: Vec<f64> = points
+        .iter()
+        .map(|c| c.g0 - c.normal_stress_and_jump(full).1)
+        .collect();
+    for k in 1..points.len() {
+        if gap[k - 1] <= 0.0 && gap[k] > 0.0 {
+            let (x0, x1) = (points[k - 1].x[0], points[k].x[0]);
+            let x = x0 + (x1 - x0) * (-gap[k - 1]) / (gap[k] - gap[k - 1]);
+            return Ok((x, gap[..k].iter().filter(|&&g| g < 0.0).count()));
+        }
+    }
+    let last = points.last().map_or(0.0, |c| c.x[0]);
+    Ok((last, gap.iter().filter(|&&g| g < 0.0).count()))
 }
 // ANCHOR_END: peer_estimators

@@ -1,13 +1,11 @@
 //! Error against run time: the program behind the chapter of that name.
 //! IGA p = 2, 3, 4 and FEM Q1, Q2 over a ladder of Hertz meshes, each error
-//! against a converged fine-mesh reference and against the wall time spent;
-//! beside them GetFEM's Q1 and Q2 runs of the same problem, read from the
-//! committed `data/getfem/hertz_getfem.csv`. Output:
-//! `book/src/generated/error_vs_time/`.
+//! against a converged fine-mesh reference and against the wall time spent.
+//! Output: `book/src/generated/error_vs_time/`. GetFEM's runs beside ours
+//! are the heavy program `getfem_peer` (which uses `getfem.rs` here).
 //!
 //! Run it with `cargo run --release --example error_vs_time`.
 
-mod getfem;
 #[path = "../common/hertz.rs"]
 mod setup;
 
@@ -34,13 +32,11 @@ const TARGETS: [(f64, &str, &str); 3] = [
     (0.001, "0_1pct", "0.1 %"),
 ];
 
-/// A discretisation of the ladder: (`method` and `degree` as in runs.csv),
-/// or one of GetFEM's (read from its CSV, not run here).
+/// A discretisation of the ladder (`method` and `degree` as in runs.csv).
 #[derive(Clone, Copy, PartialEq)]
 enum Method {
     Iga(usize),
     Fem(usize),
-    GetFem(usize),
 }
 
 impl Method {
@@ -52,13 +48,10 @@ impl Method {
         Method::Fem(2),
     ];
 
-    /// GetFEM's elements, in the order of its CSV.
-    const PEER: [Method; 2] = [Method::GetFem(1), Method::GetFem(2)];
-
     fn refine(self, n: usize) -> RefineSpec {
         match self {
             Method::Iga(p) => RefineSpec::iga(p, [n, n]),
-            Method::Fem(q) | Method::GetFem(q) => RefineSpec::lagrange(q, [n, n]),
+            Method::Fem(q) => RefineSpec::lagrange(q, [n, n]),
         }
     }
 
@@ -66,16 +59,14 @@ impl Method {
         match self {
             Method::Iga(p) => ("iga", p),
             Method::Fem(q) => ("fem", q),
-            Method::GetFem(q) => ("getfem", q),
         }
     }
 
-    /// `iga_p2`, `fem_q1`, `getfem_q2`: the key of the facts.
+    /// `iga_p2`, `fem_q1`: the key of the facts.
     fn fact_key(self) -> String {
         match self {
             Method::Iga(p) => format!("iga_p{p}"),
             Method::Fem(q) => format!("fem_q{q}"),
-            Method::GetFem(q) => format!("getfem_q{q}"),
         }
     }
 
@@ -83,19 +74,18 @@ impl Method {
         match self {
             Method::Iga(p) => format!("IGA p = {p}"),
             Method::Fem(q) => format!("FEM Q{q}"),
-            Method::GetFem(q) => format!("GetFEM Q{q}"),
         }
     }
 }
 // ANCHOR_END: setup
 
-/// One rung, measured (or, for GetFEM, read).
+/// One rung, measured.
 struct Point {
     method: Method,
     elements: usize,
     dofs: usize,
     seconds: f64,
-    /// Errors against the reference; GetFEM's CSV gives p₀ and a only.
+    /// Errors against the reference.
     p0: f64,
     half_width: f64,
     pressure_l2: Option<f64>,
@@ -167,28 +157,6 @@ fn measure(method: Method, n: usize, reference: &Reference, exact: &Hertz) -> Re
 }
 // ANCHOR_END: measure
 
-// ANCHOR: peer
-/// GetFEM's runs as points: each p₀ against the reference solution
-/// measured by GetFEM's own estimator, so that a difference of estimators
-/// is not counted as an error, and each a against ours (`peer_reference`:
-/// see [`getfem::peak_pressure`] for why).
-fn peer_points(peer: &getfem::Peer, peer_reference: (f64, f64)) -> Vec<Point> {
-    let (p0_ref, a_ref) = peer_reference;
-    peer.runs
-        .iter()
-        .map(|r| Point {
-            method: Method::GetFem(r.degree),
-            elements: r.elements,
-            dofs: r.dofs,
-            seconds: r.seconds,
-            p0: relative(r.p0, p0_ref).abs(),
-            half_width: relative(r.half_width, a_ref).abs(),
-            pressure_l2: None,
-        })
-        .collect()
-}
-// ANCHOR_END: peer
-
 /// The cheapest run of `method` from which on every finer run meets
 /// `target` in `err`: (seconds, elements).
 fn first_reaching(
@@ -225,7 +193,6 @@ const QUANTITIES: [Quantity; 3] = [
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("error_vs_time")?;
     let exact = setup::analytic(&setup::scene(setup::iga(2, 8))?)?;
-    let peer = getfem::load()?;
 
     // ANCHOR: reference
     let (rp, rn) = REFERENCE;
@@ -233,11 +200,6 @@ fn main() -> Result<()> {
     let problem = scene.build()?;
     let solution = solve(&problem, &SolverOptions::with_kind(SolverKind::Newton))?;
     let reference = Reference::new(&problem, &solution.u, &solution.full)?;
-    // p₀ of the same solution, measured as the GetFEM script measures its own
-    let peer_reference = (
-        getfem::peak_pressure(&problem, &solution.full)?,
-        reference.measures.half_width,
-    );
     // ANCHOR_END: reference
     let mut runs = Vec::new();
     for m in Method::ALL {
@@ -245,9 +207,8 @@ fn main() -> Result<()> {
             runs.push(measure(m, n, &reference, &exact)?);
         }
     }
-    let peer_points = peer_points(&peer, peer_reference);
-    let points: Vec<&Point> = runs.iter().map(|r| &r.point).chain(&peer_points).collect();
-    let methods: Vec<Method> = Method::ALL.into_iter().chain(Method::PEER).collect();
+    let points: Vec<&Point> = runs.iter().map(|r| &r.point).collect();
+    let methods: Vec<Method> = Method::ALL.to_vec();
 
     // ANCHOR: tables
     let mut table = Table::new(vec![
@@ -296,29 +257,6 @@ fn main() -> Result<()> {
     }
     chapter.table("runs", &table)?;
     chapter.timed("runs.csv"); // its `seconds` column
-
-    // GetFEM's runs: its own figures, and its errors against our reference
-    let mut table = Table::new(vec![
-        Column::plain("element", "element"),
-        Column::new("elements", "mesh", Unit::None, Format::Mesh),
-        Column::plain("dofs", "DOFs"),
-        Column::plain("newton_iterations", "Newton"),
-        Column::new("seconds", "time", Unit::Second, Format::Fixed(2)),
-        Column::new("p0_error", "p₀ error", Unit::None, Format::Sci(1)),
-        Column::new("half_width_error", "a error", Unit::None, Format::Sci(1)),
-    ]);
-    for (r, p) in peer.runs.iter().zip(&peer_points) {
-        table.push(vec![
-            format!("Q{}", r.degree).into(),
-            r.elements.into(),
-            r.dofs.into(),
-            r.newton_iterations.into(),
-            r.seconds.into(),
-            p.p0.into(),
-            p.half_width.into(),
-        ])?;
-    }
-    chapter.table("getfem", &table)?;
 
     // Which method reaches each target first: one table per quantity, a
     // row per method, a column per target.
@@ -380,12 +318,6 @@ fn main() -> Result<()> {
         reference.energy.into(),
     ])?;
     refs.push(vec![
-        "the same, GetFEM's p₀ estimator".into(),
-        peer_reference.0.into(),
-        Cell::Empty,
-        Cell::Empty,
-    ])?;
-    refs.push(vec![
         "Hertz".into(),
         exact.p0.into(),
         exact.half_width.into(),
@@ -417,13 +349,6 @@ fn main() -> Result<()> {
         for (t, _, pct) in TARGETS {
             series.push(Series::line(format!("target {pct}"), vec![(t0, t), (t1, t)]).dashed());
         }
-        // GetFEM last, dashed, where its CSV has the quantity
-        for m in Method::PEER {
-            let s = line(m);
-            if !s.points.is_empty() {
-                series.push(s.dashed());
-            }
-        }
         chapter.timed(&format!("{key}_vs_time.svg"));
         line_chart(
             chapter.path(&format!("{key}_vs_time.svg")),
@@ -451,11 +376,6 @@ fn main() -> Result<()> {
         relative(reference.measures.half_width, exact.half_width),
         Format::SignedPercent(1),
     )?;
-    f.number(
-        "estimator_offset_p0",
-        relative(peer_reference.0, reference.measures.p0),
-        Format::SignedPercent(2),
-    )?;
     let finest_hertz: Vec<f64> = runs
         .iter()
         .filter(|r| r.point.elements == 64)
@@ -472,41 +392,50 @@ fn main() -> Result<()> {
             Format::Percent(1).render(hi)
         ),
     )?;
-    for (qk, _, err) in QUANTITIES {
-        for (t, tk, _) in TARGETS {
-            // the fastest of ours and of GetFEM's to reach the target for good
-            let (mut ours, mut theirs) = (f64::INFINITY, f64::INFINITY);
+    // which method reaches each target first in time, and on the coarsest
+    // mesh, per quantity and target
+    let (mut reached, mut iga_first, mut iga_first_cells) = (0, 0, Vec::new());
+    for (qk, qname, err) in QUANTITIES {
+        for (t, tk, th) in TARGETS {
+            let mut fastest: Option<(f64, Method)> = None;
             for &m in &methods {
-                if !points.iter().any(|p| p.method == m && err(p).is_some()) {
-                    continue; // GetFEM's CSV has no pressure profile
-                }
                 let reached = first_reaching(&points, m, t, err);
-                let best = match m {
-                    Method::GetFem(_) => &mut theirs,
-                    _ => &mut ours,
-                };
-                *best = best.min(reached.map_or(f64::INFINITY, |(s, _)| s));
+                if let Some((s, _)) = reached {
+                    if fastest.is_none_or(|(b, _)| s < b) {
+                        fastest = Some((s, m));
+                    }
+                }
                 let mesh = reached.map_or("never".into(), |(_, n)| format!("{n}²"));
                 f.text(&format!("{qk}_{tk}_{}", m.fact_key()), mesh)?;
             }
-            if ours.is_finite() && theirs.is_finite() {
-                let key = format!("{qk}_{tk}_getfem_over_ours");
-                f.timed_number(&key, theirs / ours, Format::Times(0))?;
+            if let Some((_, m)) = fastest {
+                reached += 1;
+                if matches!(m, Method::Iga(_)) {
+                    iga_first += 1;
+                    iga_first_cells.push(format!("{qname} {th}"));
+                }
             }
         }
     }
-    // the peer's record: what its CSV says about how it was run
-    f.text("getfem_version", &peer.version)?;
-    f.text("getfem_date", &peer.date)?;
-    f.count("getfem_runs", peer.runs.len())?;
-    let largest = peer.runs.iter().max_by_key(|r| r.dofs).expect("runs");
-    f.count("getfem_largest_dofs", largest.dofs)?;
-    f.text(
-        "getfem_largest_mesh",
-        format!("Q{} {}²", largest.degree, largest.elements),
-    )?;
-    f.number("getfem_largest_seconds", largest.seconds, Format::Fixed(0))?;
-    f.text("getfem_comment", &peer.comment)?;
+    f.timed_number("targets_reached", reached as f64, Format::Plain)?;
+    f.timed_number("targets_iga_first", iga_first as f64, Format::Plain)?;
+    f.timed_text("targets_iga_first_list", iga_first_cells.join(", "))?;
+    // the energy indicator along the ladder: the methods along which it
+    // rises somewhere from one mesh to the next
+    let rising: Vec<String> = Method::ALL
+        .iter()
+        .filter(|&&m| {
+            let e: Vec<f64> = runs
+                .iter()
+                .filter(|r| r.point.method == m)
+                .map(|r| r.energy)
+                .collect();
+            e.windows(2).any(|w| w[1] > w[0])
+        })
+        .map(|m| m.label())
+        .collect();
+    f.count("energy_rising_methods", rising.len())?;
+    f.text("energy_rising_list", rising.join(", "))?;
     // ANCHOR_END: facts
     chapter.finish()
 }

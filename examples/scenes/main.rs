@@ -237,6 +237,11 @@ fn main() -> Result<()> {
         ])?;
     }
     chapter.table("outputs", &table)?;
+    // the summary holds the run's seconds per phase (`[timing]`), and so
+    // its size and text vary from run to run
+    for f in ["outputs.csv", "outputs.md", "hertz_summary.toml"] {
+        chapter.timed(f);
+    }
     let summary =
         std::fs::read_to_string(out.join(scene::files::SUMMARY)).map_err(|source| Error::Io {
             path: "out/hertz/summary.toml".into(),

@@ -92,6 +92,7 @@ pub const PROGRAMS: &[Program] = &[
     program("two_cylinders", "two_cylinders", Cost::Quick),
     program("iga_vs_fem", "iga_vs_fem", Cost::Quick),
     program("error_vs_time", "error_vs_time", Cost::Quick),
+    program("getfem_peer", "getfem_peer", Cost::Heavy),
     program("solvers", "solvers", Cost::Quick),
     program("solver_scaling", "solver_scaling", Cost::Heavy),
     program("penalty", "penalty", Cost::Quick),
