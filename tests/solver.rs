@@ -371,8 +371,8 @@ fn the_skew_variant_converges_with_a_tiny_penalty() {
 
 /// θ = 0 with γ at 10⁻³ of Eq. (11): one step from the balanced start
 /// lands on a genuine root of the discrete equations (the whole arc
-/// active, p₀ twice the paper's), and the solution says that every active
-/// point is below the stability bound.
+/// active), and the solution says that every active point off the
+/// disk's collapsed corner is below the stability bound.
 #[test]
 fn an_under_penalised_root_is_a_root_and_is_flagged() {
     let p = HertzCase {
