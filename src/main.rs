@@ -6,15 +6,17 @@
 //! large for the memory budget, an output directory that cannot take the
 //! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
 //! by SIGINT / SIGTERM (no output written). Every error is one line on
-//! stderr starting with `error:`. A run or check whose contact penalty lies
-//! below the stability bound succeeds, with one `warning:` line on stderr
-//! per contact pair concerned.
+//! stderr starting with `error:`. A run or check whose answer may be
+//! doubtful (a penalty outside its stable range, the stiffer body as slave,
+//! locking, a contact zone cut off by the end of its slave side, ...)
+//! succeeds, with one `warning:` line on stderr per cause.
 
 use clap::{Parser, Subcommand};
 use iga_contact::report::atomic::{self, OutputSet};
 use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
 use iga_contact::resources::{parse_size, Budget};
-use iga_contact::scene::{PenaltyWarning, Scene};
+use iga_contact::scene::Scene;
+use iga_contact::solver::Warning;
 use iga_contact::timing::Stopwatch;
 use iga_contact::Error;
 use std::path::{Path, PathBuf};
@@ -125,13 +127,13 @@ fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> R
                 Error::NotConverged { .. } | Error::Singular(_) | Error::Floating(_)
             ) {
                 if let Ok(c) = scene.check(&budget) {
-                    warn(scene_path, &c.penalty_warnings);
+                    warn(scene_path, &c.warnings);
                 }
             }
             return Err(fail(e));
         }
     };
-    warn(scene_path, &report.penalty_warnings);
+    warn(scene_path, &report.warnings);
     let place = if report.files.is_empty() {
         String::new()
     } else {
@@ -146,15 +148,15 @@ fn check(scene_path: &Path, max_memory: Option<String>) -> Result<(), Failure> {
     let budget = budget(max_memory)?;
     let scene = Scene::load(scene_path).map_err(fail)?;
     let report = scene.check(&budget).map_err(fail)?;
-    warn(scene_path, &report.penalty_warnings);
+    warn(scene_path, &report.warnings);
     println!("{}: {report}", scene_path.display());
     Ok(())
 }
 
-/// One `warning:` line on stderr per pair whose penalty is below its
-/// stability bound: the run goes on (the solution may still be right), but
-/// the user is told, with what to change.
-fn warn(scene_path: &Path, warnings: &[PenaltyWarning]) {
+/// One `warning:` line on stderr per cause that makes the answer doubtful
+/// ([`Warning`]): the run goes on (the solution may still be right), but
+/// the user is told, with the one change that fixes it.
+fn warn(scene_path: &Path, warnings: &[Warning]) {
     for w in warnings {
         eprintln!(
             "warning: {}: {}",

@@ -12,6 +12,7 @@ pub mod hertz;
 
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
+pub use crate::contact::penalty::{stability_of, PenaltyStability};
 use crate::contact::{contact_points, ContactPoint, Integration, Role};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
@@ -40,6 +41,11 @@ pub struct ProfileSample {
     pub bracket: f64,
     /// Quadrature weight of the sampling rule, arc length included.
     pub weight: f64,
+    /// False on a slave element whose geometric map is singular at an end
+    /// ([`crate::contact::pair::regular_map`]): σ_n there is a division by
+    /// det J ≈ 0, and the bracket is not a pressure. The measures skip such samples, and the
+    /// profile's table marks them.
+    pub regular: bool,
 }
 
 impl ProfileSample {
@@ -116,6 +122,7 @@ impl PressureProfile {
                 g0: cp.g0,
                 bracket: cp.p(full),
                 weight: cp.weight,
+                regular: cp.regular,
             })
             .collect();
         samples.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.t.total_cmp(&b.t)));
@@ -151,9 +158,26 @@ impl PressureProfile {
     }
 
     /// Peak pressure p₀ and half-width a of pair `pair`
-    /// (see [`ContactMeasures::of`]).
+    /// (see [`ContactMeasures::of`]), over the samples where the map is
+    /// regular ([`ProfileSample::regular`]).
     pub fn measures(&self, pair: usize) -> ContactMeasures {
-        ContactMeasures::of(self.pair(pair), self.side_ends[pair])
+        let regular: Vec<ProfileSample> = self
+            .pair(pair)
+            .iter()
+            .filter(|s| s.regular)
+            .copied()
+            .collect();
+        ContactMeasures::of(&regular, self.side_ends[pair])
+    }
+
+    /// The largest pressure of pair `pair` over its regular samples: the
+    /// profile's own maximum, which the measures' p₀ does not exceed.
+    pub fn max_pressure(&self, pair: usize) -> f64 {
+        self.pair(pair)
+            .iter()
+            .filter(|s| s.regular)
+            .map(ProfileSample::pressure)
+            .fold(0.0, f64::max)
     }
 }
 
@@ -396,6 +420,30 @@ fn interpolate_pressure(samples: &[ProfileSample], x: f64) -> f64 {
     }
 }
 
+/// [`PenaltyStability`] of every pair at the displacement `full`: the
+/// active points are those with P(u) ≤ 0.
+pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStability> {
+    stability_of(
+        &problem.points,
+        problem.pairs.len(),
+        |_, cp| cp.p(full) <= 0.0,
+        crate::solver::warning::OVER_PENALTY,
+    )
+}
+
+/// [`PenaltyStability`] of every pair before solving: the active points
+/// are those where the bodies first touch
+/// ([`crate::contact::penalty::first_touch`]).
+pub fn first_touch_stability(points: &[ContactPoint], pairs: usize) -> Vec<PenaltyStability> {
+    let touch = crate::contact::penalty::first_touch(points, pairs);
+    stability_of(
+        points,
+        pairs,
+        |q, _| touch[q],
+        crate::solver::warning::OVER_PENALTY,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -409,6 +457,7 @@ mod tests {
             g0: x * x, // first touch at x = 0
             bracket,
             weight: 1.0,
+            regular: true,
         }
     }
 
@@ -478,91 +527,4 @@ mod tests {
         assert_eq!(interpolate_pressure(&s, -1.0), 1.0);
         assert_eq!(interpolate_pressure(&s, 2.0), 3.0);
     }
-}
-
-/// The stability of the penalty of one pair: how many contact points have γ
-/// below the bound under which the θ-family loses coercivity
-/// ([`crate::contact::penalty::stability_bound`] of the point's slave
-/// element), in all and among the *active* points — those with P ≤ 0 at a
-/// solution ([`penalty_stability`]) or, before any solve, those where the
-/// bodies first touch ([`first_touch_stability`]) — and how far below.
-///
-/// Below the bound, the discrete problem restricted to an active set need
-/// not be coercive, so a converged solution need not be the only one: two
-/// solvers can reach different "converged" answers. Points below the bound
-/// that stay inactive do not enter the solution's tangent.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PenaltyStability {
-    pub points: usize,
-    pub below: usize,
-    /// The active points (P ≤ 0, or first touch).
-    pub active: usize,
-    pub active_below: usize,
-    /// The smallest γ / bound over the active points whose bound is
-    /// positive; `None` if there is none (no active point, or θ = −1,
-    /// whose bound is 0).
-    pub min_active_ratio: Option<f64>,
-}
-
-impl PenaltyStability {
-    /// The penalty factor that would lift every active point to its bound:
-    /// `factor` / [`min_active_ratio`](Self::min_active_ratio), where
-    /// `factor` is the pair's present one (γ is proportional to it, for the
-    /// empirical and the sharp penalty alike). `None` when no active point
-    /// is below the bound.
-    pub fn factor_needed(&self, factor: f64) -> Option<f64> {
-        self.min_active_ratio
-            .filter(|&r| r < 1.0 && self.active_below > 0)
-            .map(|r| factor / r)
-    }
-}
-
-/// [`PenaltyStability`] of every pair of `points` (`pairs` pairs), the
-/// active points being those for which `active` holds.
-pub fn stability_of(
-    points: &[ContactPoint],
-    pairs: usize,
-    active: impl Fn(&ContactPoint) -> bool,
-) -> Vec<PenaltyStability> {
-    let mut out = vec![PenaltyStability::default(); pairs];
-    for cp in points {
-        let s = &mut out[cp.pair];
-        s.points += 1;
-        let bound = cp.stability_bound();
-        let below = cp.gamma < bound;
-        s.below += usize::from(below);
-        if active(cp) {
-            s.active += 1;
-            s.active_below += usize::from(below);
-            if bound > 0.0 {
-                let r = cp.gamma / bound;
-                s.min_active_ratio = Some(s.min_active_ratio.map_or(r, |m: f64| m.min(r)));
-            }
-        }
-    }
-    out
-}
-
-/// [`PenaltyStability`] of every pair at the displacement `full`: the
-/// active points are those with P(u) ≤ 0.
-pub fn penalty_stability(problem: &Problem, full: &[f64]) -> Vec<PenaltyStability> {
-    stability_of(&problem.points, problem.pairs.len(), |cp| cp.p(full) <= 0.0)
-}
-
-/// [`PenaltyStability`] of every pair before solving: the active points
-/// are those where the bodies first touch, the points of least initial gap
-/// g₀ of their pair (to within 10⁻⁶ of the pair's range of g₀, so that a
-/// flat contact counts all its points). Contact begins there, whatever the
-/// load; the points far from it (such as the degenerate corner of the
-/// nine-point disk) touch only under a load that closes their gap.
-pub fn first_touch_stability(points: &[ContactPoint], pairs: usize) -> Vec<PenaltyStability> {
-    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); pairs];
-    for cp in points {
-        let r = &mut range[cp.pair];
-        *r = (r.0.min(cp.g0), r.1.max(cp.g0));
-    }
-    stability_of(points, pairs, |cp| {
-        let (lo, hi) = range[cp.pair];
-        cp.g0 <= lo + 1e-6 * (hi - lo)
-    })
 }

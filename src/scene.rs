@@ -29,7 +29,7 @@
 //! ```
 
 use crate::assembly::Load;
-use crate::contact::{contact_points, ContactPair, Master, Nitsche, Penalty, Theta};
+use crate::contact::{contact_points, ContactPair, Master, Nitsche, Theta};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
@@ -248,10 +248,12 @@ pub struct OutputSpec {
     pub vtu_subdivisions: usize,
     /// `iterations.csv`: the solver's iteration history.
     pub iterations: bool,
-    /// `pressure_profile.csv`: pair, x, y, the bracket P and the pressure
-    /// −\[P\]₋ on the dense profile ([`crate::post::PressureProfile::dense`]).
+    /// `pressure_profile.csv`: pair, x, y, the bracket P, the pressure
+    /// −\[P\]₋ on the dense profile ([`crate::post::PressureProfile::dense`]),
+    /// and whether the map is regular there ([`crate::post::ProfileSample::regular`]).
     pub pressure_profile: bool,
-    /// `summary.toml`: iterations, forces, and per contact pair p0 and half_width.
+    /// `summary.toml`: iterations, forces, per contact pair p0 and
+    /// half_width, and the run's warnings.
     pub summary: bool,
     /// `pressure_profile.svg`: the pressure profile as a figure.
     pub figures: bool,
@@ -314,17 +316,15 @@ pub struct RunReport {
     pub contact_force: [f64; 2],
     /// Resultant of the external loads (computed only for the summary).
     pub applied_force: Option<[f64; 2]>,
-    /// The pairs whose penalty lies below the stability bound at an
-    /// active contact point of the solution.
-    pub penalty_warnings: Vec<PenaltyWarning>,
     /// Files written (committed together), sorted by name.
     pub files: Vec<PathBuf>,
     /// Wall-clock time of build, solve and output.
     pub seconds: f64,
     /// The same, split by phase ([`PhaseTimes`]).
     pub timing: PhaseTimes,
-    /// What the solution may not be ([`solver::Warning`]): a converged
-    /// run is reported with them, never silently.
+    /// What the solution may not be ([`solver::Warning`]), one per cause,
+    /// each with one remedy: a converged run is reported with them, never
+    /// silently.
     pub warnings: Vec<solver::Warning>,
 }
 
@@ -346,13 +346,9 @@ impl fmt::Display for RunReport {
             self.seconds
         )?;
         match self.files.len() {
-            0 => write!(f, "; no outputs requested")?,
-            n => write!(f, "; wrote {n} files")?,
+            0 => write!(f, "; no outputs requested"),
+            n => write!(f, "; wrote {n} files"),
         }
-        for w in &self.warnings {
-            write!(f, "; warning: {w}")?;
-        }
-        Ok(())
     }
 }
 
@@ -370,6 +366,10 @@ struct Summary<'a> {
     applied_force: [f64; 2],
     /// One entry per contact pair: p0, half_width, contact force.
     contact: Vec<PairSummary>,
+    /// The run's warnings ([`solver::Warning`]), one line per cause; absent
+    /// when there is none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    warnings: Vec<String>,
     /// The solver options as TOML (a `usize::MAX` limit, which TOML cannot
     /// hold, is written as the largest TOML integer).
     solver: toml::Value,
@@ -397,96 +397,6 @@ struct PairSummary {
     /// absent when no active point has a positive bound (θ = −1).
     #[serde(skip_serializing_if = "Option::is_none")]
     min_penalty_ratio: Option<f64>,
-}
-
-/// A contact pair whose penalty γ lies below the stability bound of its θ
-/// ([`crate::contact::penalty::stability_bound`]) at some of the points
-/// that carry the contact: the active points of a solution
-/// ([`Scene::run`]), or, before solving, the points where the bodies first
-/// touch ([`Scene::check`]). There the discrete problem need not be
-/// coercive: the iteration may fail, or different solvers may reach
-/// different "converged" solutions.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PenaltyWarning {
-    /// Index of the pair (`contact[k]`).
-    pub pair: usize,
-    /// The pair in words: slave side and master.
-    pub label: String,
-    pub theta: Theta,
-    pub penalty: Penalty,
-    /// The pair's `penalty_factor`.
-    pub factor: f64,
-    pub stability: PenaltyStability,
-    /// True: counted at a solution's active points; false: at first touch.
-    pub at_solution: bool,
-}
-
-impl PenaltyWarning {
-    /// The warnings of every pair of `scene` whose `stability` has active
-    /// points below the bound.
-    fn of(scene: &Scene, stability: &[PenaltyStability], at_solution: bool) -> Vec<Self> {
-        stability
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| s.active_below > 0)
-            .map(|(k, s)| {
-                let c = &scene.contacts[k];
-                Self {
-                    pair: k,
-                    label: scene.pair_label(k),
-                    theta: c.nitsche.theta,
-                    penalty: c.nitsche.penalty,
-                    factor: c.nitsche.penalty_factor,
-                    stability: *s,
-                    at_solution,
-                }
-            })
-            .collect()
-    }
-
-    /// A short note for the iteration history.
-    fn event(&self) -> String {
-        format!(
-            "penalty below bound: contact[{}], {} points",
-            self.pair, self.stability.active_below
-        )
-    }
-}
-
-impl fmt::Display for PenaltyWarning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let s = &self.stability;
-        let k = self.pair;
-        let where_ = if self.at_solution {
-            "active contact points of the solution"
-        } else {
-            "contact points where the bodies first touch"
-        };
-        write!(
-            f,
-            "contact[{k}] ({}): the penalty is below the stability bound of θ = {} at {} of {} {where_}",
-            self.label, self.theta, s.active_below, s.active
-        )?;
-        if let Some(r) = s.min_active_ratio {
-            write!(f, " (smallest γ/bound {r:.3})")?;
-        }
-        write!(
-            f,
-            ", so the discrete problem may be unstable and its solution not unique; "
-        )?;
-        let factor = format!("contact[{k}].nitsche.penalty_factor");
-        let needed = s
-            .factor_needed(self.factor)
-            .map(|x| format!(" above {x:.3}"))
-            .unwrap_or_default();
-        match self.penalty {
-            Penalty::Empirical => write!(
-                f,
-                "raise {factor}{needed}, or set contact[{k}].nitsche.penalty = \"sharp\" (with a factor above 1)"
-            ),
-            Penalty::Sharp => write!(f, "raise {factor} (the safety factor over the bound){needed}"),
-        }
-    }
 }
 
 /// `opts` as a TOML table, saturating integers beyond TOML's i64 range.
@@ -994,18 +904,6 @@ impl Scene {
         self
     }
 
-    /// Contact pair `k` in words, for messages: `disk.eta_min on a rigid
-    /// segment`, `upper.eta_min on lower.eta_max`.
-    fn pair_label(&self, k: usize) -> String {
-        let c = &self.contacts[k];
-        let master = match (&c.master.rigid_segment, &c.master.body, c.master.side) {
-            (Some(_), _, _) => "a rigid segment".to_string(),
-            (None, Some(b), Some(side)) => format!("{b}.{}", side.name()),
-            _ => "its master".to_string(),
-        };
-        format!("{}.{} on {master}", c.slave, c.slave_side.name())
-    }
-
     /// Index of each body by name.
     fn body_index(&self) -> HashMap<&str, usize> {
         self.bodies
@@ -1270,9 +1168,10 @@ pub struct CheckReport {
     pub contact_points: usize,
     /// The resource estimate the budget was checked against.
     pub estimate: Estimate,
-    /// The pairs whose penalty lies below the stability bound where the
-    /// bodies first touch.
-    pub penalty_warnings: Vec<PenaltyWarning>,
+    /// What may make a run's answer doubtful, known before solving
+    /// ([`solver::warning::before_solve`]): the choice of slave, locking,
+    /// and the penalty where the bodies first touch.
+    pub warnings: Vec<solver::Warning>,
 }
 
 impl fmt::Display for CheckReport {
@@ -1613,13 +1512,13 @@ impl Scene {
         let d = self.discretise(MapCheck::EveryPoint)?;
         let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
-        let stability = post::first_touch_stability(&points, d.pairs.len());
+        let warnings = solver::warning::before_solve(&d.bodies, &d.pairs, &points);
         Ok(CheckReport {
             bodies: d.bodies.len(),
             dofs: d.map.n_free(),
             contact_points: points.len(),
             estimate,
-            penalty_warnings: PenaltyWarning::of(self, &stability, false),
+            warnings,
         })
     }
 
@@ -1671,7 +1570,6 @@ impl Scene {
         let contact_force = post::contact_resultant(&problem, full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
         let stability = post::penalty_stability(&problem, full);
-        let penalty_warnings = PenaltyWarning::of(self, &stability, true);
         let history = &solution.history;
         let title = self.title.as_deref().unwrap_or("scene");
         let applied_force = if o.summary {
@@ -1691,7 +1589,6 @@ impl Scene {
                     applied_force,
                     active_points,
                     stability: &stability,
-                    warnings: &penalty_warnings,
                 };
                 self.stage_outputs(&mut set, &problem, &solution, &outputs, &mut clock)?;
                 let files = set.commit()?;
@@ -1708,7 +1605,6 @@ impl Scene {
             contact_points: problem.points.len(),
             contact_force,
             applied_force,
-            penalty_warnings,
             files,
             seconds: timing.wall,
             timing,
@@ -1733,7 +1629,6 @@ impl Scene {
             applied_force,
             active_points,
             stability,
-            warnings,
         } = *out;
         let o = &self.output;
         let full = &solution.full;
@@ -1766,9 +1661,11 @@ impl Scene {
             let pairs = self.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
                 .map(|k| {
+                    // where the map is singular the bracket is not a pressure
                     let points = profile
                         .pair(k)
                         .iter()
+                        .filter(|p| p.regular)
                         .map(|p| (p.x[0], p.pressure()))
                         .collect();
                     let label = if pairs > 1 {
@@ -1789,7 +1686,11 @@ impl Scene {
             plot::line_chart(set.dir().join(files::FIGURE), &axes, &series)?;
         }
         if o.iterations {
-            let notes: Vec<String> = warnings.iter().map(PenaltyWarning::event).collect();
+            let notes: Vec<String> = solution
+                .warnings
+                .iter()
+                .filter_map(solver::Warning::note)
+                .collect();
             let table = history_table_noted(history, Unit::None, Unit::None, &notes)?;
             set.stage(files::ITERATIONS, table.to_csv().as_bytes())?;
         }
@@ -1819,6 +1720,7 @@ impl Scene {
                 contact_force,
                 applied_force,
                 contact,
+                warnings: solution.warnings.iter().map(|w| w.to_string()).collect(),
                 solver: solver_table(&self.solver),
                 timing: clock.times(),
             };
@@ -1837,7 +1739,6 @@ struct Outputs<'a> {
     applied_force: Option<[f64; 2]>,
     active_points: usize,
     stability: &'a [PenaltyStability],
-    warnings: &'a [PenaltyWarning],
 }
 
 /// The relative residual a converged run ends with; a run that needed no
@@ -1856,7 +1757,9 @@ fn no_negative_zero(v: f64) -> f64 {
     v + 0.0
 }
 
-/// The dense pressure profile as a table: pair, position, bracket and pressure.
+/// The dense pressure profile as a table: pair, position, bracket, pressure,
+/// and whether the map is regular there (1) or singular (0: the bracket is
+/// 1/det J of the stress, and the measures of `summary.toml` skip it).
 fn profile_table(profile: &PressureProfile) -> Result<Table> {
     let mut t = Table::new(vec![
         Column::plain("pair", "pair"),
@@ -1864,6 +1767,7 @@ fn profile_table(profile: &PressureProfile) -> Result<Table> {
         Column::new("y", "y", Unit::None, Format::Sci(6)),
         Column::new("bracket", "P", Unit::None, Format::Sci(6)),
         Column::new("pressure", "pressure", Unit::None, Format::Sci(6)),
+        Column::plain("regular", "regular map"),
     ]);
     for s in profile.samples() {
         t.push(vec![
@@ -1872,6 +1776,7 @@ fn profile_table(profile: &PressureProfile) -> Result<Table> {
             s.x[1].into(),
             s.bracket.into(),
             s.pressure().into(),
+            usize::from(s.regular).into(),
         ])?;
     }
     Ok(t)

@@ -7,7 +7,7 @@ use iga_contact::contact::penalty::stability_bound;
 use iga_contact::contact::{Penalty, Theta};
 use iga_contact::post::penalty_stability;
 use iga_contact::scene::{RefineSpec, Scene};
-use iga_contact::solver::solve;
+use iga_contact::solver::{solve, Warning};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -81,12 +81,9 @@ fn run_warns_below_the_bound_and_not_above() {
     for part in [
         "hertz.toml",
         "contact[0]",
-        "disk.eta_min",
-        "θ = 1",
-        "active contact points",
+        "active points",
         "smallest γ/bound 0.",
-        "contact[0].nitsche.penalty_factor above",
-        "penalty = \"sharp\"",
+        "set contact[0].nitsche.penalty_factor = ",
     ] {
         assert!(w[0].contains(part), "{part:?} missing in {}", w[0]);
     }
@@ -94,7 +91,8 @@ fn run_warns_below_the_bound_and_not_above() {
     let n = pair["penalty_below_bound_points"].as_integer().unwrap();
     assert!(n > 0);
     assert!(pair["min_penalty_ratio"].as_float().unwrap() < 1.0);
-    assert!(w[0].contains(&format!("at {n} of ")), "{}", w[0]);
+    assert!(w[0].contains(&format!(": {n} of the ")), "{}", w[0]);
+    assert!(!w[0].contains(" or "), "one remedy: {}", w[0]);
     let history = std::fs::read_to_string(below.join("out/hertz/iterations.csv")).unwrap();
     let last = history.lines().last().unwrap();
     assert!(
@@ -129,6 +127,7 @@ fn check_warns_where_the_bodies_first_touch() {
         assert_eq!(w.len(), usize::from(warns), "θ = {theta}: {w:?}");
         if warns {
             assert!(w[0].contains("where the bodies first touch"), "{}", w[0]);
+            assert!(!w[0].contains(" or "), "one remedy: {}", w[0]);
         }
     }
     // the shipped scenes are all silent, at check and at run
@@ -174,15 +173,20 @@ fn the_warning_follows_the_bound() {
     let report = scene(Theta::Symmetric, Penalty::Empirical, 1.0)
         .run(&out)
         .unwrap();
-    assert_eq!(report.penalty_warnings.len(), 1);
-    let w = &report.penalty_warnings[0];
-    let needed = w.stability.factor_needed(1.0).unwrap();
-    assert!(needed > 1.0);
-
-    // the counts, recomputed from the points
     let s = scene(Theta::Symmetric, Penalty::Empirical, 1.0);
     let problem = s.build().unwrap();
     let full = solve(&problem, &s.solver).unwrap().full;
+    let stability = penalty_stability(&problem, &full)[0];
+    assert!(matches!(
+        report.warnings.as_slice(),
+        [Warning::PenaltyBelowBound { below, active, min_ratio, .. }]
+            if *below == stability.active_below && *active == stability.active
+                && *min_ratio == stability.min_active_ratio
+    ));
+    let needed = stability.factor_needed(1.0).unwrap();
+    assert!(needed > 1.0);
+
+    // the counts, recomputed from the points
     let active: Vec<_> = problem
         .points
         .iter()
@@ -196,32 +200,32 @@ fn the_warning_follows_the_bound() {
         .iter()
         .map(|cp| cp.gamma / stability_bound(cp.trace_constant, 1.0))
         .fold(f64::INFINITY, f64::min);
-    assert_eq!(w.stability.active, active.len());
-    assert_eq!(w.stability.active_below, below);
-    assert_eq!(w.stability.min_active_ratio, Some(ratio));
-    assert_eq!(penalty_stability(&problem, &full)[0], w.stability);
+    assert_eq!(stability.active, active.len());
+    assert_eq!(stability.active_below, below);
+    assert_eq!(stability.min_active_ratio, Some(ratio));
 
     // a little above the factor named: silent; a little below: warned
     for (factor, warns) in [(1.2 * needed, false), (0.8 * needed, true)] {
         let r = scene(Theta::Symmetric, Penalty::Empirical, factor)
             .run(&out)
             .unwrap();
-        assert_eq!(!r.penalty_warnings.is_empty(), warns, "factor {factor}");
+        assert_eq!(below_bound(&r.warnings), warns, "factor {factor}");
     }
     // the sharp penalty sits on the bound with safety 1, below it with less
     for (safety, warns) in [(1.0, false), (2.0, false), (0.5, true)] {
         let r = scene(Theta::Symmetric, Penalty::Sharp, safety)
             .run(&out)
             .unwrap();
-        assert_eq!(!r.penalty_warnings.is_empty(), warns, "safety {safety}");
-        if warns {
-            let text = r.penalty_warnings[0].to_string();
-            assert!(text.contains("safety factor"), "{text}");
-        }
+        assert_eq!(below_bound(&r.warnings), warns, "safety {safety}");
     }
     // θ = −1 has no bound: never warned, however small the penalty
     let r = scene(Theta::Skew, Penalty::Empirical, 0.05)
         .run(&out)
         .unwrap();
-    assert!(r.penalty_warnings.is_empty());
+    assert!(!below_bound(&r.warnings));
+}
+
+fn below_bound(w: &[Warning]) -> bool {
+    w.iter()
+        .any(|w| matches!(w, Warning::PenaltyBelowBound { .. }))
 }

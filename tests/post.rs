@@ -75,3 +75,68 @@ fn the_contact_resultant_balances_the_load() {
         );
     }
 }
+
+/// Under eight times the load the 32×32 disk presses towards the collapsed
+/// corner of its contact side (det J = 0 there): the samples of the element
+/// at that corner are marked singular, and only they; the profile's largest pressure over its
+/// regular samples is the summary's p₀; and the table written by a run
+/// marks the same rows.
+#[test]
+fn the_profile_marks_the_singular_corner_and_agrees_with_the_summary() {
+    let mut scene = hertz_scene(2, 32, Theta::Incomplete);
+    for l in &mut scene.loads {
+        if let iga_contact::assembly::Load::BodyForce { force, .. } = l {
+            force[1] *= 8.0;
+        }
+    }
+    scene.solver = SolverOptions::default();
+    let p = scene.build().unwrap();
+    let s = solve(&p, &scene.solver).unwrap();
+    let profile = PressureProfile::dense(&p, &s.full).unwrap();
+    let m = profile.measures(0);
+    let corner = p.bodies[0].space.patch.side_curve(p.pairs[0].slave_side);
+    let corner = corner.point(corner.knots.last());
+    let singular: Vec<_> = profile.samples().iter().filter(|q| !q.regular).collect();
+    assert!(!singular.is_empty());
+    // only next to the corner: within two elements of the 32 along the side
+    let side_length = 0.2 * std::f64::consts::FRAC_PI_4;
+    for q in &singular {
+        let d = (q.x[0] - corner[0]).hypot(q.x[1] - corner[1]);
+        assert!(
+            d < 2.0 * side_length / 32.0,
+            "a singular sample {d} from the corner"
+        );
+    }
+    // the corner's brackets are far beyond p₀: they would have been the peak
+    let wild = singular.iter().map(|q| q.pressure()).fold(0.0, f64::max);
+    assert!(wild > 10.0 * m.p0, "{wild} against {}", m.p0);
+    assert_eq!(profile.max_pressure(0), m.p0);
+
+    // the run's table and summary say the same
+    let dir = std::env::temp_dir().join(format!("iga-post-corner-{}", std::process::id()));
+    scene.output = iga_contact::scene::OutputSpec {
+        summary: true,
+        pressure_profile: true,
+        ..Default::default()
+    };
+    scene.run(&dir).unwrap();
+    let csv = std::fs::read_to_string(dir.join("pressure_profile.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("pair,x,y,bracket,pressure,regular"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.iter().filter(|r| r[5] == 0.0).count(), singular.len());
+    let peak = rows
+        .iter()
+        .filter(|r| r[5] == 1.0)
+        .map(|r| r[4])
+        .fold(0.0, f64::max);
+    let summary: toml::Table =
+        toml::from_str(&std::fs::read_to_string(dir.join("summary.toml")).unwrap()).unwrap();
+    let p0 = summary["contact"].as_array().unwrap()[0]["p0"]
+        .as_float()
+        .unwrap();
+    assert!((peak - p0).abs() <= 1e-6 * p0, "{peak} against {p0}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

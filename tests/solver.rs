@@ -371,8 +371,8 @@ fn the_skew_variant_converges_with_a_tiny_penalty() {
 
 /// θ = 0 with γ at 10⁻³ of Eq. (11): one step from the balanced start
 /// lands on a genuine root of the discrete equations (the whole arc
-/// active, p₀ twice the paper's), and the solution says that every active
-/// point is below the stability bound.
+/// active), and the solution says that every active point off the
+/// disk's collapsed corner is below the stability bound.
 #[test]
 fn an_under_penalised_root_is_a_root_and_is_flagged() {
     let p = HertzCase {
@@ -386,13 +386,17 @@ fn an_under_penalised_root_is_a_root_and_is_flagged() {
     let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     assert!(norm(&r) <= 1e-10 * norm(&p.rhs));
     assert_eq!(state.active, p.points.len());
-    assert_eq!(
-        s.warnings,
-        vec![Warning::PenaltyBelowBound {
-            pair: 0,
-            below: p.points.len(),
-            active: p.points.len()
-        }]
+    // every point is below the bound but those at the collapsed corner of
+    // the disk, where the map is singular and the bound means nothing
+    let regular = p.points.iter().filter(|cp| cp.regular).count();
+    assert!(
+        matches!(
+            s.warnings.as_slice(),
+            [Warning::PenaltyBelowBound { pair: 0, below, active, .. }]
+                if *below == regular && *active == p.points.len()
+        ),
+        "{:?}",
+        s.warnings
     );
 }
 

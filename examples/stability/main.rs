@@ -19,6 +19,7 @@ use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::solver::history::{Event, History};
+use iga_contact::solver::warning::OVER_PENALTY;
 use iga_contact::solver::{solve, Solution, SolverOptions, Warning};
 
 // ANCHOR: metric
@@ -287,6 +288,12 @@ impl Row {
                         if *active == 1 { "" } else { "s" }
                     )
                 }
+                Warning::PenaltyFarAboveBound { over, active, .. } => {
+                    format!("γ > {OVER_PENALTY} × bound at {over}/{active}")
+                }
+                Warning::StifferSlave { .. } => "stiffer slave".to_string(),
+                Warning::NearlyIncompressible { .. } => "locking".to_string(),
+                Warning::ZoneAtSideEnd { .. } => "zone at side end".to_string(),
             });
         }
         parts.join("; ")
@@ -610,6 +617,7 @@ fn main() -> Result<()> {
             f.count(&format!("{key}_active"), a)?;
         }
         f.count(&format!("{key}_below"), r.below)?;
+        f.count(&format!("{key}_warnings"), r.warnings.len())?;
         f.text(&format!("{key}_status"), r.status)?;
         f.count(&format!("{key}_iterations"), r.history.len())?;
     }

@@ -89,6 +89,10 @@ pub struct ContactPoint {
     /// a linear functional, ⟦u_n⟧ = Σ_k jn[k] u[dofs[k]]: R¹_A n¹ on the slave
     /// DOFs, −R²_B n¹ on the master's. The gap is g_n = g₀ − ⟦u_n⟧, Eq. (5).
     pub jn: Vec<f64>,
+    /// False on a slave element whose geometric map is singular at an end
+    /// ([`regular_map`]): σ_n there divides by det J ≈ 0, so neither the
+    /// bracket nor the trace constant of the element measures the contact.
+    pub regular: bool,
 }
 
 impl ContactPoint {
@@ -116,9 +120,11 @@ impl ContactPoint {
     }
 
     /// Whether γ lies below [`Self::stability_bound`]: where such a point is
-    /// active, the tangent need not be coercive.
+    /// active, the tangent need not be coercive. A point where the map is
+    /// singular ([`Self::regular`]) is never judged: its C_T measures the
+    /// 1/det J of σ_n, not the penalty.
     pub fn below_stability_bound(&self) -> bool {
-        self.gamma < self.stability_bound()
+        self.regular && self.gamma < self.stability_bound()
     }
 }
 
@@ -465,6 +471,7 @@ fn make_point(
             }
         }
     }
+    let regular = regular_map(&space.patch, pair.slave_side, be.range);
     Ok(Some(ContactPoint {
         pair: ip,
         role,
@@ -479,5 +486,29 @@ fn make_point(
         dofs,
         sn,
         jn,
+        regular,
     }))
+}
+
+/// The fraction of det J at the middle of a boundary element below which
+/// det J at one of its ends counts as vanishing: the element touches a
+/// point where the map is singular. The nine-point disk collapses a corner
+/// of its contact side that way (det J = 0 there); under eight times the
+/// load, the 32×32 disk's profile samples in that element show brackets up
+/// to hundreds of times p₀, which are the 1/det J of the stress, not
+/// contact, and its trace constant is set by the same 1/det J.
+pub const SINGULAR_MAP: f64 = 1e-2;
+
+/// Whether the map of `patch` is regular on the boundary element of `side`
+/// spanning `range`: |det J| at both its ends is at least [`SINGULAR_MAP`]
+/// times its value at the middle. Within a regular element det J varies
+/// smoothly, far less than that; it vanishes only at a degenerate point.
+pub fn regular_map(patch: &crate::nurbs::NurbsPatch, side: Side, range: [f64; 2]) -> bool {
+    let det = |t: f64| {
+        let q = patch.side_point(side, t);
+        let j = patch.jacobian(q[0], q[1]);
+        (j[0][0] * j[1][1] - j[0][1] * j[1][0]).abs()
+    };
+    let middle = det(0.5 * (range[0] + range[1]));
+    det(range[0]).min(det(range[1])) >= SINGULAR_MAP * middle
 }

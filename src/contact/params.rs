@@ -125,6 +125,13 @@ pub enum Sides {
 }
 
 /// Whose Young's modulus E enters the penalty (11) of a point.
+///
+/// The slave should be the softer body: its modulus then sets γ at the
+/// scale of the body the contact terms act on. A slave stiffer than its
+/// master, or `Max` with a stiffer master, makes γ far exceed the
+/// stability bound of the softer body, and p₀ grows with it; both are
+/// warned ([`crate::solver::Warning::StifferSlave`],
+/// [`crate::solver::Warning::PenaltyFarAboveBound`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Modulus {
@@ -132,7 +139,9 @@ pub enum Modulus {
     /// and the consistency term then share one stress scale.
     #[default]
     Slave,
-    /// max(E¹, E²), the stiffer of the two bodies.
+    /// max(E¹, E²), the stiffer of the two bodies: over-penalises a softer
+    /// slave (warned when γ leaves the stable range; the remedy is
+    /// `Slave`).
     Max,
 }
 

@@ -6,6 +6,7 @@
 //! Chouly–Hild write the reciprocal, a compliance γ₀h, so "small γ" there
 //! means a large one here.)
 
+use super::pair::ContactPoint;
 use crate::error::Result;
 
 /// Inputs of Eq. (11) at one contact quadrature point.
@@ -134,6 +135,109 @@ pub fn stability_bound(trace_constant: f64, theta: f64) -> f64 {
 /// of the contact stiffness.
 pub fn sharp_penalty(trace_constant: f64, theta: f64, safety: f64) -> f64 {
     safety * stability_bound(trace_constant, theta.max(0.0))
+}
+
+/// The stability of the penalty of one pair: how many contact points have γ
+/// below the bound under which the θ-family loses coercivity
+/// ([`crate::contact::penalty::stability_bound`] of the point's slave
+/// element), in all and among the *active* points — those with P ≤ 0 at a
+/// solution ([`penalty_stability`]) or, before any solve, those where the
+/// bodies first touch ([`first_touch_stability`]) — and how far below.
+///
+/// Below the bound, the discrete problem restricted to an active set need
+/// not be coercive, so a converged solution need not be the only one: two
+/// solvers can reach different "converged" answers. Points below the bound
+/// that stay inactive do not enter the solution's tangent.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PenaltyStability {
+    pub points: usize,
+    pub below: usize,
+    /// The active points (P ≤ 0, or first touch).
+    pub active: usize,
+    pub active_below: usize,
+    /// The smallest γ / bound over the active points whose bound is
+    /// positive; `None` if there is none (no active point, or θ = −1,
+    /// whose bound is 0).
+    pub min_active_ratio: Option<f64>,
+    /// Active points whose γ exceeds the over-penalisation limit times the
+    /// θ = 0 bound of their element (the scale of the contact stiffness,
+    /// whatever θ).
+    pub active_over: usize,
+    /// The largest γ / (θ = 0 bound) over the active points; `None` if no
+    /// active point has a positive bound.
+    pub max_active_scale: Option<f64>,
+}
+
+impl PenaltyStability {
+    /// The penalty factor that would lift every active point to its bound:
+    /// `factor` / [`min_active_ratio`](Self::min_active_ratio), where
+    /// `factor` is the pair's present one (γ is proportional to it, for the
+    /// empirical and the sharp penalty alike). `None` when no active point
+    /// is below the bound.
+    pub fn factor_needed(&self, factor: f64) -> Option<f64> {
+        self.min_active_ratio
+            .filter(|&r| r < 1.0 && self.active_below > 0)
+            .map(|r| factor / r)
+    }
+}
+
+/// [`PenaltyStability`] of every pair of `points` (`pairs` pairs), the
+/// active points being those for which `active(index, point)` holds, and
+/// `over` the γ / (θ = 0 bound) beyond which an active point counts as
+/// over-penalised.
+pub fn stability_of(
+    points: &[ContactPoint],
+    pairs: usize,
+    active: impl Fn(usize, &ContactPoint) -> bool,
+    over: f64,
+) -> Vec<PenaltyStability> {
+    let mut out = vec![PenaltyStability::default(); pairs];
+    for (q, cp) in points.iter().enumerate() {
+        let s = &mut out[cp.pair];
+        s.points += 1;
+        // where the map is singular, C_T (from σ_n ∝ 1/det J) says nothing
+        // about the penalty: such points are counted, never judged
+        let judged = cp.regular;
+        let bound = cp.stability_bound();
+        let below = judged && cp.gamma < bound;
+        s.below += usize::from(below);
+        if active(q, cp) {
+            s.active += 1;
+            s.active_below += usize::from(below);
+            if judged && bound > 0.0 {
+                let r = cp.gamma / bound;
+                s.min_active_ratio = Some(s.min_active_ratio.map_or(r, |m: f64| m.min(r)));
+            }
+            let scale = stability_bound(cp.trace_constant, 0.0);
+            if judged && scale > 0.0 {
+                let r = cp.gamma / scale;
+                s.active_over += usize::from(r > over);
+                s.max_active_scale = Some(s.max_active_scale.map_or(r, |m: f64| m.max(r)));
+            }
+        }
+    }
+    out
+}
+
+/// Which of `points` (of `pairs` pairs) are where the bodies first touch:
+/// the points of least initial gap g₀ of their pair (to within 10⁻⁶ of the
+/// pair's range of g₀, so that a flat contact counts all its points).
+/// Contact begins there, whatever the load; the points far from it (such
+/// as the degenerate corner of the nine-point disk) touch only under a load
+/// that closes their gap.
+pub fn first_touch(points: &[ContactPoint], pairs: usize) -> Vec<bool> {
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); pairs];
+    for cp in points {
+        let r = &mut range[cp.pair];
+        *r = (r.0.min(cp.g0), r.1.max(cp.g0));
+    }
+    points
+        .iter()
+        .map(|cp| {
+            let (lo, hi) = range[cp.pair];
+            cp.g0 <= lo + 1e-6 * (hi - lo)
+        })
+        .collect()
 }
 
 #[cfg(test)]
