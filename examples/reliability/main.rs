@@ -19,6 +19,7 @@
 //! minutes and up to 6 GB on two cores): `iga-contact reproduce --all`, or
 //! `cargo build --release && cargo run --release --example reliability`.
 
+mod answers;
 mod campaign;
 mod faults;
 mod harness;
@@ -495,20 +496,22 @@ fn main() -> Result<()> {
     let t0 = Instant::now();
     let start = Machine::here();
 
-    eprintln!("1/7 check at the maxima");
+    eprintln!("1/8 check at the maxima");
     let slowest_maximum = maxima(&work, &mut chapter)?;
-    eprintln!("2/7 refinement");
+    eprintln!("2/8 refinement");
     refinement(&mut chapter)?;
-    eprintln!("3/7 memory");
+    eprintln!("3/8 memory");
     let (lo, hi) = memory(&work, &mut chapter)?;
-    eprintln!("4/7 campaign");
+    eprintln!("4/8 campaign");
     let tally = campaign::run(&work);
-    eprintln!("5/7 ill-posed input");
+    eprintln!("5/8 ill-posed input");
     let refused = ill_posed(&work, &mut chapter)?;
-    eprintln!("6/7 gaps");
+    eprintln!("6/8 gaps");
     let (gap_iterations, gap_force) = gaps(&mut chapter)?;
-    eprintln!("7/7 faults");
+    eprintln!("7/8 faults");
     let faults = faults::run(&work)?;
+    eprintln!("8/8 answers off the benchmark path");
+    let answered = answers::report(&work, &mut chapter)?;
     let _ = std::fs::remove_dir_all(&work);
 
     // the campaign's outcomes and the lists behind them
@@ -581,6 +584,31 @@ fn main() -> Result<()> {
         "campaign_slowest_check",
         tally.slowest_check,
         Format::Fixed(2),
+    )?;
+    f.count("answers_cases", answered.cases)?;
+    f.count("answers_launches", answered.launches)?;
+    f.count("answers_silent_wrong", answered.silent_wrong)?;
+    f.count("answers_unclean", answered.unclean)?;
+    f.count("launches_total", tally.launches + answered.launches)?;
+    f.number("answers_wrong", answers::WRONG, Format::Percent(0))?;
+    f.number("answers_balance", answers::BALANCE, Format::Pow10(0))?;
+    f.number(
+        "scale_spread",
+        answered.scale_spread.max(1e-16),
+        Format::Pow10(0),
+    )?;
+    f.text(
+        "scale_same_iterations",
+        if answered.scale_same_iterations {
+            "yes"
+        } else {
+            "no"
+        },
+    )?;
+    f.number(
+        "prescribed_error",
+        answered.prescribed_error.max(1e-16),
+        Format::Pow10(0),
     )?;
     f.count("ill_posed_refused", refused)?;
     f.count("gap_max_iterations", gap_iterations)?;
