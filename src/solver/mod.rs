@@ -626,8 +626,8 @@ impl<'a> Tracker<'a> {
         }
         if let Some(level) = self.unresolvable(u, du, r, floor) {
             return Status::Failed(format!(
-                "the residual cannot be resolved below {} of its initial value at this iterate (round-off of K u and the contact forces at displacements up to {max_displacement:.3e}), above the tolerance rtol = {:e}: a penalty too small to hold the bodies lets them move that far (raise nitsche.penalty_factor), or the input's scale is extreme",
-                format!("{level:.1e}"), self.opts.rtol
+                "the residual cannot be resolved below {level:.1e} of its initial value at this iterate (round-off of K u and the contact forces at displacements up to {max_displacement:.3e}), above the tolerance rtol = {:e}: a penalty too small to hold the bodies lets them move that far (raise nitsche.penalty_factor), or the input's scale is extreme",
+                self.opts.rtol
             ));
         }
         if self.history.len() >= self.opts.max_iter {
@@ -682,14 +682,13 @@ impl<'a> Tracker<'a> {
     pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64], floor: Floor) -> bool {
         let rn = norm(r);
         let r0 = self.history.initial_residual;
-        let verdict = if rn <= self.opts.rtol * r0 {
+        if rn <= self.opts.rtol * r0 {
             Self::at_floor(r, floor) || self.settled(u, du)
         } else {
             rn <= self.resolvable()
                 && (Self::at_floor(r, floor)
                     || (rn <= ROUND_OFF * floor.cancelling && self.settled(u, du)))
-        };
-        verdict
+        }
     }
 }
 
