@@ -85,7 +85,7 @@ fn amd_order(pattern: SymbolicSparseColMatRef<'_, usize>, keep: &[usize]) -> Res
     let sub = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
     let (mut fwd, mut inv) = (vec![0usize; m], vec![0usize; m]);
     let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_scratch::<usize>(m, nnz))
-        .map_err(|e| singular("AMD workspace", e))?;
+        .map_err(|e| Error::OutOfMemory(format!("the AMD workspace: {e:?}")))?;
     faer::sparse::linalg::amd::order(
         &mut fwd,
         &mut inv,
@@ -135,10 +135,11 @@ impl Condensation {
         let mut values = Vec::new();
         values
             .try_reserve_exact(symbolic.len_val())
-            .map_err(|e| singular("the Cholesky factor does not fit in memory", e))?;
+            .map_err(|e| Error::OutOfMemory(format!("the Cholesky factor: {e:?}")))?;
         values.resize(symbolic.len_val(), 0.0);
         let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-        let mut mem = MemBuffer::try_new(scratch).map_err(|e| singular("Cholesky workspace", e))?;
+        let mut mem = MemBuffer::try_new(scratch)
+            .map_err(|e| Error::OutOfMemory(format!("the Cholesky workspace: {e:?}")))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,

@@ -23,6 +23,10 @@ pub enum Error {
     /// A linear system could not be factorised.
     #[error("singular kernel: {0}")]
     Singular(String),
+    /// A factorisation or kernel could not allocate its storage: the
+    /// problem is too large for the memory left.
+    #[error("out of memory: {0}")]
+    OutOfMemory(String),
     /// Every potential contact point is open and the secant matrix lost the
     /// rigid-body support that contact provided.
     #[error("active set empty: the body floats ({0})")]
@@ -64,6 +68,7 @@ impl Error {
             Error::InvalidInput { .. } => "invalid_input",
             Error::Geometry(_) => "geometry",
             Error::Singular(_) => "singular_kernel",
+            Error::OutOfMemory(_) => "out_of_memory",
             Error::Floating(_) => "floating_body",
             Error::NotConverged { .. } => "not_converged",
             Error::Output { .. } => "output",

@@ -7,7 +7,79 @@ use crate::assembly::Triplets;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::sparse::linalg::{LltError, LuError};
+use faer::sparse::{FaerError, SparseColMat, SymbolicSparseColMat};
+
+/// Why a factorisation failed: what decides whether another method can
+/// take over ([`crate::solver::kernel`] falls back to LU on the first and
+/// the last only) and what the user is told.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FactorError {
+    /// Cholesky met a pivot that is not positive: the matrix is not
+    /// symmetric positive definite (LU may still factorise it).
+    #[error("{what}: pivot {pivot} is not positive, so the matrix is not positive definite")]
+    NotPositiveDefinite { what: &'static str, pivot: usize },
+    /// No usable pivot: the matrix is singular.
+    #[error("{what}: {detail}")]
+    Singular { what: &'static str, detail: String },
+    /// The factorisation could not allocate its storage.
+    #[error("{what}: out of memory")]
+    OutOfMemory { what: &'static str },
+    /// The Woodbury solve of a [`LowRankCorrected`] factorisation is
+    /// singular or inaccurate (S nearly singular): LU is the safe choice.
+    #[error("{0}")]
+    LowRankInaccurate(String),
+}
+
+impl FactorError {
+    fn of_faer(what: &'static str, e: FaerError) -> Self {
+        match e {
+            FaerError::OutOfMemory => FactorError::OutOfMemory { what },
+            other => FactorError::Singular {
+                what,
+                detail: format!("{other:?}"),
+            },
+        }
+    }
+
+    fn of_llt(what: &'static str, e: LltError) -> Self {
+        match e {
+            LltError::Numeric(
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index },
+            ) => FactorError::NotPositiveDefinite { what, pivot: index },
+            LltError::Generic(g) => Self::of_faer(what, g),
+        }
+    }
+
+    fn of_lu(what: &'static str, e: LuError) -> Self {
+        match e {
+            LuError::SymbolicSingular { index } => FactorError::Singular {
+                what,
+                detail: format!("no pivot in column {index}"),
+            },
+            LuError::Generic(g) => Self::of_faer(what, g),
+        }
+    }
+
+    /// Whether another factorisation of the same matrix may succeed (LU
+    /// where Cholesky or the low-rank path failed); running out of memory
+    /// or a singular matrix is not helped by that.
+    pub fn lu_may_help(&self) -> bool {
+        matches!(
+            self,
+            FactorError::NotPositiveDefinite { .. } | FactorError::LowRankInaccurate(_)
+        )
+    }
+}
+
+impl From<FactorError> for Error {
+    fn from(e: FactorError) -> Self {
+        match e {
+            FactorError::OutOfMemory { .. } => Error::OutOfMemory(e.to_string()),
+            other => Error::Singular(other.to_string()),
+        }
+    }
+}
 
 /// A square sparsity pattern built once from the (row, col) lists of one
 /// or more triplet sets; triplet sets with the same (row, col) lists, in
@@ -290,32 +362,35 @@ pub struct Factoriser {
 }
 
 impl Factoriser {
-    pub fn factor(&mut self, a: &SparseColMat<usize, f64>, method: Method) -> Result<Factor> {
-        let sing =
-            |what: &str, e: &dyn std::fmt::Debug| Error::Singular(format!("{what} failed: {e:?}"));
+    pub fn factor(
+        &mut self,
+        a: &SparseColMat<usize, f64>,
+        method: Method,
+    ) -> std::result::Result<Factor, FactorError> {
         match method {
             Method::Cholesky => {
                 if self.llt.is_none() {
                     self.llt = Some(
                         SymbolicLlt::try_new(a.symbolic(), faer::Side::Lower)
-                            .map_err(|e| sing("symbolic Cholesky", &e))?,
+                            .map_err(|e| FactorError::of_faer("symbolic Cholesky", e))?,
                     );
                 }
                 let sym = self.llt.clone().expect("set above");
                 Llt::try_new_with_symbolic(sym, a.as_ref(), faer::Side::Lower)
                     .map(Factor::Llt)
-                    .map_err(|e| sing("Cholesky (matrix not positive definite?)", &e))
+                    .map_err(|e| FactorError::of_llt("Cholesky", e))
             }
             Method::Lu => {
                 if self.lu.is_none() {
                     self.lu = Some(
-                        SymbolicLu::try_new(a.symbolic()).map_err(|e| sing("symbolic LU", &e))?,
+                        SymbolicLu::try_new(a.symbolic())
+                            .map_err(|e| FactorError::of_faer("symbolic LU", e))?,
                     );
                 }
                 let sym = self.lu.clone().expect("set above");
                 Lu::try_new_with_symbolic(sym, a.as_ref())
                     .map(|f| Factor::Lu(Box::new(f)))
-                    .map_err(|e| sing("LU", &e))
+                    .map_err(|e| FactorError::of_lu("LU", e))
             }
         }
     }
@@ -323,15 +398,16 @@ impl Factoriser {
     /// The [`LowRankCorrected`] factorisation of A = S + U Vᵀ, where `s`
     /// (n × n, symmetric positive definite, of this factoriser's pattern)
     /// is factorised by Cholesky and `u`, `v` are n × k. Fails with
-    /// [`Error::Singular`] if S is not positive definite, if I + Vᵀ Z is
-    /// singular, or if the set-up check fails even with refinement (S
-    /// nearly singular): in each case LU is the safe choice.
+    /// [`FactorError::NotPositiveDefinite`] if S is not positive definite,
+    /// and [`FactorError::LowRankInaccurate`] if I + Vᵀ Z is singular or
+    /// the set-up check fails even with refinement (S nearly singular): in
+    /// each case LU is the safe choice.
     pub fn factor_low_rank(
         &mut self,
         s: &SparseColMat<usize, f64>,
         u: &SparseColMat<usize, f64>,
         v: &SparseColMat<usize, f64>,
-    ) -> Result<Factor> {
+    ) -> std::result::Result<Factor, FactorError> {
         let n = s.nrows();
         let k = u.ncols();
         assert_eq!(
@@ -363,7 +439,7 @@ impl Factoriser {
         }
         let capacitance = cap.lu();
         if !capacitance.is_invertible() {
-            return Err(Error::Singular(
+            return Err(FactorError::LowRankInaccurate(
                 "the low-rank capacitance matrix I + Vᵀ S⁻¹ U is singular".into(),
             ));
         }
@@ -385,7 +461,7 @@ impl Factoriser {
         if refined <= LOW_RANK_CHECK_TOL {
             return Ok(Factor::LowRank(Box::new(f)));
         }
-        Err(Error::Singular(format!(
+        Err(FactorError::LowRankInaccurate(format!(
             "the low-rank solve is inaccurate: forward error {plain:.1e} on the set-up check, {refined:.1e} with refinement (S nearly singular?)"
         )))
     }
@@ -531,6 +607,10 @@ mod tests {
             .factor_low_rank(&m[0], &m[1], &m[2])
             .err()
             .expect("S is singular");
-        assert!(matches!(err, Error::Singular(_)), "{err}");
+        assert!(
+            matches!(err, FactorError::NotPositiveDefinite { .. }),
+            "{err}"
+        );
+        assert!(err.lu_may_help());
     }
 }

@@ -229,7 +229,7 @@ impl Problem {
             .k
             .symbolic()
             .to_owned()
-            .map_err(|e| Error::Singular(format!("out of memory for a kernel: {e:?}")))?;
+            .map_err(|e| Error::OutOfMemory(format!("a kernel's pattern: {e:?}")))?;
         Ok(SparseColMat::new(symbolic, val))
     }
 

@@ -229,3 +229,84 @@ fn below_bound(w: &[Warning]) -> bool {
     w.iter()
         .any(|w| matches!(w, Warning::PenaltyBelowBound { .. }))
 }
+
+/// The θ = 1 tied kernel (17) of a real mesh, densely, with the sharp
+/// penalty γ = `safety` · C_T at every point, and whether nalgebra's
+/// dense Cholesky accepts it (it is symmetric for θ = 1).
+fn tied_kernel_is_positive_definite(mesh: [usize; 2], block: bool, safety: f64) -> bool {
+    let base = if block {
+        Scene::shipped("block_compression.toml")
+            .unwrap()
+            .refined("block", RefineSpec::iga(2, mesh))
+            .unwrap()
+    } else {
+        Scene::shipped("hertz.toml")
+            .unwrap()
+            .refined("disk", RefineSpec::iga(2, mesh))
+            .unwrap()
+    };
+    let s = base.with_nitsche(|n| {
+        n.theta = Theta::Symmetric;
+        n.penalty = Penalty::Sharp;
+        n.penalty_factor = safety;
+    });
+    let p = s.build().unwrap();
+    let k = p
+        .kernel(iga_contact::problem::Kernel::Tied)
+        .unwrap()
+        .to_dense();
+    let n = k.nrows();
+    let a = nalgebra::DMatrix::from_fn(n, n, |i, j| k[(i, j)]);
+    // θ = 1 kernels are symmetric up to the round-off of their assembly
+    let sym = 0.5 * (&a + a.transpose());
+    assert!((&a - &sym).amax() <= 1e-8 * a.amax());
+    sym.cholesky().is_some()
+}
+
+/// The largest safety factor at which the tied kernel is not positive
+/// definite, by bisection on [0, 2].
+fn definiteness_threshold(mesh: [usize; 2], block: bool) -> f64 {
+    let (mut lo, mut hi) = (0.0, 2.0);
+    assert!(!tied_kernel_is_positive_definite(mesh, block, 1e-6));
+    assert!(tied_kernel_is_positive_definite(mesh, block, hi));
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if tied_kernel_is_positive_definite(mesh, block, mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+/// The stability bound on real elements. The bound γ > C_T of θ = 1 is
+/// elementwise (Young's inequality on each slave element's own energy), so
+/// it is sufficient: a little above it, the tied kernel of every mesh is
+/// positive definite, where a C_T too small (a wrong trace constant) would
+/// show an indefinite kernel. It is not necessary: the maximiser of
+/// ∫σ_n² / a_e on one element does not carry v_n = σ_n/γ, and a global v
+/// pays energy in the neighbouring elements its spline basis reaches, so
+/// the kernel loses definiteness at a smaller γ, s·C_T with s < 1. What
+/// also holds, and is checked, is that s lies within a factor 2 of the
+/// bound (the bound is not loose) and that it stays so as the
+/// mesh is refined (the bound scales like the kernel's own threshold).
+#[test]
+fn the_stability_bound_holds_on_real_elements() {
+    for (mesh, block) in [
+        ([4, 4], false),
+        ([8, 8], false),
+        ([4, 1], true),
+        ([8, 2], true),
+    ] {
+        for safety in [1.0 + 1e-6, 1.01, 1.1] {
+            assert!(
+                tied_kernel_is_positive_definite(mesh, block, safety),
+                "{mesh:?}, block {block}: not positive definite at {safety} × the bound"
+            );
+        }
+        let s = definiteness_threshold(mesh, block);
+        assert!(s <= 1.0, "{mesh:?}: {s}");
+        assert!(s >= 0.5, "{mesh:?}: {s}");
+    }
+}

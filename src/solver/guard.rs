@@ -57,8 +57,12 @@ impl Guard {
             gammas,
             threshold: 0.0,
         };
-        let all: Vec<usize> = (0..guard.weights.len()).collect();
-        guard.threshold = HOLD * guard.hold(&all).1;
+        // Supports that hold every body leave nothing to guard: the
+        // threshold stays 0 and `select` never forces a point.
+        if !guard.modes.is_empty() {
+            let all: Vec<usize> = (0..guard.weights.len()).collect();
+            guard.threshold = HOLD * guard.hold(&all).1;
+        }
         guard
     }
 
@@ -68,12 +72,16 @@ impl Guard {
     }
 
     fn modes(&self) -> usize {
-        self.jumps.first().map_or(0, |j| j.len())
+        self.modes.len()
     }
 
-    /// (smallest, largest) eigenvalue of Σ_{q ∈ set} w_q j_q j_qᵀ.
+    /// (smallest, largest) eigenvalue of Σ_{q ∈ set} w_q j_q j_qᵀ; with
+    /// no floating mode, (∞, 0): nothing to hold, held by any set.
     fn hold(&self, set: &[usize]) -> (f64, f64) {
         let m = self.modes();
+        if m == 0 {
+            return (f64::INFINITY, 0.0);
+        }
         let mut a = DMatrix::<f64>::zeros(m, m);
         for &q in set {
             let j = &self.jumps[q];

@@ -18,7 +18,7 @@ use super::history::Event;
 use super::system::{LinearSolve, System};
 use super::Start;
 use crate::contact::nitsche::heaviside;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::linsolve::{Factor, Factoriser, Method};
 use crate::problem::{Kernel, Problem};
 use serde::{Deserialize, Serialize};
@@ -66,13 +66,14 @@ pub fn factor_kernel(
                     }
                     return Ok(f);
                 }
-                // not positive definite, or ill-conditioned: LU decides
-                Err(Error::Singular(_)) => events.push(Event::KernelLuFallback),
-                Err(e) => return Err(e),
+                // not positive definite, or ill-conditioned: LU decides;
+                // out of memory or a singular kernel LU cannot help
+                Err(e) if e.lu_may_help() => events.push(Event::KernelLuFallback),
+                Err(e) => return Err(e.into()),
             }
         }
     }
-    fac.factor(&problem.kernel(kind)?, Method::Lu)
+    Ok(fac.factor(&problem.kernel(kind)?, Method::Lu)?)
 }
 
 /// A kernel ready for solves, with the activity it was built for and the

@@ -9,11 +9,12 @@
 //! over every free DOF, which reproduces the paper's iteration history
 //! (its start u = 0 is not interior-relaxed, so its first pair differs).
 //!
-//! Convergence (both solvers): ‖R(u_k)‖ ≤ max(`rtol`·‖R(u_0)‖, cancelling
-//! floor) and ‖Δu_k‖ ≤ `utol`·‖u_k‖, or ‖R(u_k)‖ at the typical floor
-//! whatever the update ([`Floor`]: [`ROUND_OFF`] times the round-off of
-//! evaluating R at u_k, ε ‖ |f| + |A||u| + |contact terms| ‖, the contact
-//! terms counted as computed or before they cancel). A damped iteration
+//! Convergence (both solvers): ‖R(u_k)‖ ≤ `rtol`·‖R(u_0)‖ and
+//! ‖Δu_k‖ ≤ `utol`·‖u_k‖. Where round-off keeps ‖R‖ above that
+//! ([`Floor`]: ε ‖ |f| + |A||u| + |contact terms| ‖, the contact terms
+//! counted as computed or before they cancel), an iterate at the floor
+//! converges if ‖R‖ ≤ [`RESOLVABLE`]·‖R(u_0)‖, and fails saying so if not:
+//! a residual that round-off cannot resolve is not a root. A damped iteration
 //! that stops making progress has stalled; by default the solve then
 //! starts once more from the tied kernel ([`OnStall`]). The iteration
 //! count is bounded by `max_iter`; when it runs out, the residual stops
@@ -298,7 +299,7 @@ pub(crate) fn settle(
         }
         Status::Converged => false,
         Status::Stalled => true,
-        Status::Failed(reason) => return Some(Err(failure(sys, problem, u, reason, history))),
+        Status::Failed(reason) => return Some(Err(failure(sys, problem, u, &reason, history))),
     };
     Some(Ok(Attempt {
         u: std::mem::take(u),
@@ -511,7 +512,7 @@ pub(crate) enum Status {
     Converged,
     Continue,
     Stalled,
-    Failed(&'static str),
+    Failed(String),
 }
 
 impl<'a> Tracker<'a> {
@@ -556,13 +557,19 @@ impl<'a> Tracker<'a> {
             events,
         });
         if !rn.is_finite() || !un.is_finite() || rel > 1e12 {
-            return Status::Failed("the iteration diverged");
+            return Status::Failed("the iteration diverged".into());
         }
         if self.converged(u, du, r, floor) {
             return Status::Converged;
         }
+        if let Some(level) = self.unresolvable(u, du, r, floor) {
+            return Status::Failed(format!(
+                "the residual cannot be resolved below {level:.1e} of its initial value at this iterate (round-off of K u and the contact forces at displacements up to {max_displacement:.3e}), above the tolerance rtol = {:e}: a penalty too small to hold the bodies lets them move that far (raise nitsche.penalty_factor), or the input's scale is extreme",
+                self.opts.rtol
+            ));
+        }
         if self.history.len() >= self.opts.max_iter {
-            return Status::Failed("iteration limit reached");
+            return Status::Failed("iteration limit reached".into());
         }
         if rn < (1.0 - STALL_PROGRESS) * self.best.0 {
             self.best = (rn, self.history.len());
@@ -577,17 +584,58 @@ impl<'a> Tracker<'a> {
         norm(r) <= ROUND_OFF * floor.typical
     }
 
-    /// The stopping rule: ‖R‖ at the typical floor, whatever the update;
-    /// or ‖R‖ ≤ max(rtol·‖R₀‖, the cancelling floor) and ‖Δu‖ ≤ utol·‖u‖.
-    pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64], floor: Floor) -> bool {
-        if Self::at_floor(r, floor) {
-            return true;
-        }
+    /// The largest ‖R‖ that a round-off floor may excuse: max(`rtol`,
+    /// [`RESOLVABLE`]) ‖R₀‖.
+    fn resolvable(&self) -> f64 {
+        self.opts.rtol.max(RESOLVABLE) * self.history.initial_residual
+    }
+
+    /// Whether the update is small: ‖Δu‖ ≤ `utol`·‖u‖.
+    fn settled(&self, u: &[f64], du: &[f64]) -> bool {
+        norm(du) <= self.opts.utol * norm(u).max(f64::MIN_POSITIVE)
+    }
+
+    /// Whether ‖R‖ is at a round-off floor (the typical one, or the
+    /// cancelling one with the update small) and yet above what a floor
+    /// may excuse: no iteration can lower it, and the iterate is not a
+    /// root to the accuracy asked. Returns the floor's level, ROUND_OFF ·
+    /// floor / ‖R₀‖.
+    pub fn unresolvable(&self, u: &[f64], du: &[f64], r: &[f64], floor: Floor) -> Option<f64> {
+        let rn = norm(r);
         let r0 = self.history.initial_residual;
-        norm(r) <= (self.opts.rtol * r0).max(ROUND_OFF * floor.cancelling)
-            && norm(du) <= self.opts.utol * norm(u).max(f64::MIN_POSITIVE)
+        if rn <= self.resolvable() {
+            return None;
+        }
+        if Self::at_floor(r, floor) {
+            return Some(ROUND_OFF * floor.typical / r0);
+        }
+        (rn <= ROUND_OFF * floor.cancelling && self.settled(u, du))
+            .then(|| ROUND_OFF * floor.cancelling / r0)
+    }
+
+    /// The stopping rule: ‖R‖ ≤ rtol·‖R₀‖ and ‖Δu‖ ≤ utol·‖u‖; or, where
+    /// round-off keeps ‖R‖ above rtol·‖R₀‖, ‖R‖ ≤ [`RESOLVABLE`]·‖R₀‖ at
+    /// a floor: the typical one whatever the update, the cancelling one
+    /// with a small update.
+    pub fn converged(&self, u: &[f64], du: &[f64], r: &[f64], floor: Floor) -> bool {
+        let rn = norm(r);
+        let r0 = self.history.initial_residual;
+        if rn <= self.opts.rtol * r0 {
+            Self::at_floor(r, floor) || self.settled(u, du)
+        } else {
+            rn <= self.resolvable()
+                && (Self::at_floor(r, floor)
+                    || (rn <= ROUND_OFF * floor.cancelling && self.settled(u, du)))
+        }
     }
 }
+
+/// The largest relative residual ‖R‖/‖R₀‖ that round-off may excuse when
+/// `rtol` asks for less: about √ε, half the digits of double precision.
+/// Beyond it the iterate is as close to a root as floating point can
+/// tell, but that is not close enough to call it one (a penalty 10⁻¹² of
+/// Eq. (11) leaves Hertz at a few percent).
+pub const RESOLVABLE: f64 = 1e-8;
 
 /// What floating point can resolve of ‖R‖ at an iterate: ε times the
 /// norm of the component-wise sums of the magnitudes of the terms of R.
