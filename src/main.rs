@@ -128,6 +128,19 @@ fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> R
         }
     };
     warn(scene_path, &report.penalty_warnings);
+    // One line per cause: a pair's penalty below its bound is told once,
+    // by the pair's own warning (which names the key and value to change).
+    for w in &report.warnings {
+        let told = matches!(w, iga_contact::solver::Warning::PenaltyBelowBound { pair, .. }
+            if report.penalty_warnings.iter().any(|p| p.pair == *pair));
+        if !told {
+            eprintln!(
+                "warning: {}: {}",
+                scene_path.display(),
+                one_line(&w.to_string())
+            );
+        }
+    }
     let place = if report.files.is_empty() {
         String::new()
     } else {
@@ -246,8 +259,67 @@ fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {
     }
 }
 
+/// clap's usage error as one line: its message, the argument it names
+/// (clap puts lists such as the missing arguments on lines of their own),
+/// its tip and the usage, joined; `--help` and `--version` print as usual.
+fn parse_args() -> Result<Cli, ExitCode> {
+    use clap::error::ErrorKind;
+    let e = match Cli::try_parse() {
+        Ok(cli) => return Ok(cli),
+        Err(e) => e,
+    };
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return Err(ExitCode::SUCCESS);
+    }
+    let text = e.render().to_string();
+    let line = if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+        let usage = text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("Usage: "))
+            .unwrap_or("iga-contact <COMMAND>");
+        format!(
+            "a command is required (usage: {usage}; commands: run, check, reproduce; see --help)"
+        )
+    } else {
+        usage_line(&text)
+    };
+    eprintln!("error: {line}");
+    Err(ExitCode::from(2))
+}
+
+/// Joins the parts of clap's rendered usage error into one line.
+fn usage_line(text: &str) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut usage = None;
+    for l in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if let Some(u) = l.strip_prefix("Usage: ") {
+            usage = Some(u.to_string());
+        } else if l.starts_with("For more information") {
+            continue;
+        } else if let Some(m) = l.strip_prefix("error: ") {
+            parts.push(m.to_string());
+        } else if let Some(t) = l.strip_prefix("tip: ") {
+            parts.push(format!("; {t}"));
+        } else {
+            // A continuation: the arguments a message lists.
+            parts.push(format!(" {l}"));
+        }
+    }
+    let mut line: String = parts.concat().replace(": ;", ":");
+    if let Some(u) = usage {
+        line.push_str(&format!(" (usage: {u}; see --help)"));
+    } else {
+        line.push_str(" (see --help)");
+    }
+    one_line(&line)
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match parse_args() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
     // A file-size limit (`ulimit -f`) makes writes fail with EFBIG, reported
     // as an i/o error, instead of killing the process with SIGXFSZ.
     // SAFETY: setting a signal's disposition to "ignore" has no preconditions.

@@ -343,14 +343,13 @@ impl fmt::Display for RunReport {
             self.contact_force[1],
             self.seconds
         )?;
+        // The warnings are lines of their own (the tool prints them on
+        // stderr), so that the place written to follows the files.
         match self.files.len() {
-            0 => write!(f, "; no outputs requested")?,
-            n => write!(f, "; wrote {n} files")?,
+            0 => write!(f, "; no outputs requested"),
+            1 => write!(f, "; wrote 1 file"),
+            n => write!(f, "; wrote {n} files"),
         }
-        for w in &self.warnings {
-            write!(f, "; warning: {w}")?;
-        }
-        Ok(())
     }
 }
 

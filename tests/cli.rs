@@ -177,13 +177,71 @@ fn reproduce_rejects_an_unknown_study() {
     assert!(line.contains("no-such-study"), "{line}");
 }
 
+/// Every usage error is one `error:` line naming what is wrong (exit 2),
+/// while `--help` and `--version` still print in full (exit 0).
 #[test]
-fn usage_errors_exit_with_2() {
+fn usage_errors_are_one_line_naming_the_argument() {
     let dir = workdir("usage");
-    let o = run(&dir, &["frobnicate"]);
-    assert_eq!(o.status.code(), Some(2));
-    let o = run(&dir, &["run"]);
-    assert_eq!(o.status.code(), Some(2));
+    for (args, names) in [
+        (&["frobnicate"][..], "frobnicate"),
+        (&["run"][..], "<SCENE>"),
+        (&["check"][..], "<SCENE>"),
+        (&["run", "a.toml", "b.toml"][..], "'b.toml'"),
+        (&["run", "a.toml", "--bogus"][..], "--bogus"),
+        (&["run", "a.toml", "--max-memory"][..], "--max-memory"),
+        (&["reproduce", "--all=3"][..], "--all"),
+        (&[][..], "run, check, reproduce"),
+    ] {
+        let o = run(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(line.contains(names), "{args:?}: {line}");
+        assert!(stdout(&o).is_empty(), "{args:?}");
+    }
+    for args in [&["--help"][..], &["run", "--help"][..], &["--version"][..]] {
+        let o = run(&dir, args);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
+    }
+    assert!(stdout(&run(&dir, &["run", "--help"])).contains("--max-memory"));
+}
+
+/// A run with a warning: the run line tells the files and where they
+/// went, and each cause is one `warning:` line on stderr, told once.
+#[test]
+fn a_warned_run_prints_its_files_then_one_line_per_warning() {
+    let dir = workdir("warned-run");
+    // Hertz 8×8 with θ = 0 and a penalty far below its bound, solved by
+    // the default solver (which converges there, see tests/scene.rs).
+    let hertz = std::fs::read_to_string(scene("hertz.toml")).unwrap();
+    let text = format!(
+        "{}\n[output]\niterations = true\npressure_profile = true\nsummary = true\n",
+        hertz.split("# ANCHOR: solver").next().unwrap()
+    )
+    .replace("penalty_factor = 1.0", "penalty_factor = 1e-3");
+    std::fs::write(dir.join("weak.toml"), text).unwrap();
+    let o = run(&dir, &["run", "weak.toml", "--out", "res"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "{out}");
+    assert!(lines[0].ends_with("; wrote 3 files to res"), "{out}");
+    assert!(!lines[0].contains("warning"), "{out}");
+    let err = stderr(&o);
+    let warnings: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(!warnings.is_empty(), "no warning: {err}");
+    assert!(
+        warnings
+            .iter()
+            .all(|l| l.starts_with("warning: weak.toml: ")),
+        "{err}"
+    );
+    // the penalty of contact[0] below its bound: one line, not two
+    let penalty = warnings
+        .iter()
+        .filter(|l| l.contains("stability bound"))
+        .count();
+    assert_eq!(penalty, 1, "{err}");
 }
 
 /// A block on a rigid floor with the given degree, elements and material.
