@@ -351,3 +351,58 @@ fn check_at_the_documented_maxima_answers_without_assembling() {
         }
     }
 }
+
+/// Runs the binary and returns its peak resident memory (`VmHWM`, which
+/// `wait4` reports as `ru_maxrss`), in bytes.
+fn peak_of_run(dir: &Path, args: &[&str]) -> f64 {
+    let child = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the binary runs");
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value for wait4 to fill in.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: waits for our own child; status and usage are valid out-pointers.
+    let r = unsafe { libc::wait4(child.id() as i32, &mut status, 0, &mut usage) };
+    assert_eq!(r, child.id() as i32);
+    assert!(
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        "{args:?}: {status}"
+    );
+    usage.ru_maxrss as f64 * 1024.0
+}
+
+/// The estimate follows the measured peak within a factor 1.5 either way,
+/// on a scene whose factorisation sets the peak (p = 2, 128²) and on ones
+/// where the contact couplings do (high degree); the full ladder is the
+/// memory table of the chapter "Reliability" (`examples/memory_table.rs`).
+#[test]
+fn the_memory_estimate_is_within_one_and_a_half_of_the_measured_peak() {
+    let dir = workdir("memory-estimate");
+    for (p, m) in [(2, 128), (6, 32), (10, 8)] {
+        let text = block(p, [m, m], "1.0e6", "1.0e4") + "\n[output]\nsummary = true\n";
+        let name = format!("p{p}_{m}.toml");
+        std::fs::write(dir.join(&name), &text).unwrap();
+        let estimate = iga_contact::scene::Scene::from_toml_str(&text)
+            .unwrap()
+            .estimate()
+            .unwrap()
+            .peak_bytes();
+        let peak = peak_of_run(&dir, &["run", &name, "--out", "out", "--max-memory", "1T"]);
+        let ratio = estimate / peak;
+        eprintln!("p = {p}, {m}²: estimate {estimate:.3e} B, peak {peak:.3e} B, ratio {ratio:.2}");
+        assert!((1.0 / 1.5..=1.5).contains(&ratio), "p = {p}, {m}²: {ratio}");
+    }
+    // Hertz p = 2 on 512² (without the VTU) needs about 3 GB: a budget of
+    // 4 GiB admits it.
+    let hertz = std::fs::read_to_string(scene("hertz.toml"))
+        .unwrap()
+        .replace("elements = [8, 8]", "elements = [512, 512]")
+        .replace("vtu = true ", "vtu = false");
+    std::fs::write(dir.join("hertz512.toml"), hertz).unwrap();
+    let o = run(&dir, &["check", "hertz512.toml", "--max-memory", "4G"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}

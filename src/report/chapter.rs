@@ -99,6 +99,7 @@ pub const PROGRAMS: &[Program] = &[
     program("stability", "stability", Cost::Quick),
     program("scenes", "scenes", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),
+    program("memory_table", "memory_table", Cost::Heavy),
 ];
 
 /// Where a chapter program writes, and the facts it collects on the way.
