@@ -26,14 +26,15 @@ use iga_contact::Result;
 const LIMIT: f64 = 15.0e9;
 
 /// (degree, meshes per direction): every degree the chapter names, the
-/// meshes as far as [`LIMIT`] and the run time allow.
+/// meshes as far as [`LIMIT`] and the run time allow; p = 2, whose ladder
+/// reaches 1024², last.
 const CASES: [(usize, &[usize]); 6] = [
-    (1, &[8, 32, 128, 512, 1024]),
-    (2, &[8, 32, 128, 256, 512, 1024]),
+    (1, &[8, 32, 128, 512]),
     (3, &[8, 32, 128, 256]),
-    (4, &[8, 32, 128, 256]),
-    (6, &[8, 32, 64, 128]),
-    (10, &[8, 16, 32, 64]),
+    (4, &[8, 32, 128]),
+    (6, &[8, 32, 64]),
+    (10, &[8, 16, 32]),
+    (2, &[8, 32, 128, 256, 512, 1024]),
 ];
 
 fn main() -> Result<()> {

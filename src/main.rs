@@ -5,10 +5,11 @@
 //! input (a scene that does not parse or validate, is ill-posed or too
 //! large for the memory budget, an output directory that cannot take the
 //! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
-//! by SIGINT / SIGTERM (no output written). Every error is one line on
-//! stderr starting with `error:`. A run or check whose contact penalty lies
-//! below the stability bound succeeds, with one `warning:` line on stderr
-//! per contact pair concerned.
+//! by SIGINT / SIGTERM (no output written). Every error, command-line
+//! usage included, is one line on stderr starting with `error:`. A run or
+//! check whose answer may be doubtful (a contact penalty below the
+//! stability bound, an unresolved contact zone) succeeds, with one
+//! `warning:` line on stderr per cause.
 
 use clap::{Parser, Subcommand};
 use iga_contact::report::atomic::{self, OutputSet};
@@ -306,7 +307,7 @@ fn usage_line(text: &str) -> String {
             parts.push(format!(" {l}"));
         }
     }
-    let mut line: String = parts.concat().replace(": ;", ":");
+    let mut line: String = parts.concat();
     if let Some(u) = usage {
         line.push_str(&format!(" (usage: {u}; see --help)"));
     } else {

@@ -250,7 +250,9 @@ impl Estimate {
             human_bytes(budget.bytes as f64),
             budget.source
         );
-        if self.peak_phase() == "output" && self.vtu_points > 0.0 {
+        // The VTU is named only when its samples are most of the peak.
+        let vtu_bytes = VTU_BYTES_PER_POINT * self.vtu_points;
+        if self.peak_phase() == "output" && vtu_bytes > 0.5 * peak {
             return Err(Error::invalid(
                 vtu_field,
                 format!("{} sample points", human_count(self.vtu_points)),
