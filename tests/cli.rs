@@ -355,6 +355,7 @@ fn check_at_the_documented_maxima_answers_without_assembling() {
 /// Runs the binary and returns its peak resident memory (`VmHWM`, which
 /// `wait4` reports as `ru_maxrss`), in bytes.
 fn peak_of_run(dir: &Path, args: &[&str]) -> f64 {
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, for its rusage
     let child = Command::new(BIN)
         .args(args)
         .current_dir(dir)
