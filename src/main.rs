@@ -6,7 +6,7 @@
 //! large for the memory budget, an output directory that cannot take the
 //! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
 //! by SIGINT / SIGTERM (no output written). Every error is one line on
-//! stderr starting with `error:`. A run or check whose answer may be
+//! stderr starting with `error:`, command-line usage included. A run or check whose answer may be
 //! doubtful (a penalty outside its stable range, the stiffer body as slave,
 //! locking, a contact zone cut off by the end of its slave side, ...)
 //! succeeds, with one `warning:` line on stderr per cause.
@@ -252,8 +252,67 @@ fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {
     }
 }
 
+/// clap's usage error as one line: its message, the argument it names
+/// (clap puts lists such as the missing arguments on lines of their own),
+/// its tip and the usage, joined; `--help` and `--version` print as usual.
+fn parse_args() -> Result<Cli, ExitCode> {
+    use clap::error::ErrorKind;
+    let e = match Cli::try_parse() {
+        Ok(cli) => return Ok(cli),
+        Err(e) => e,
+    };
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        let _ = e.print();
+        return Err(ExitCode::SUCCESS);
+    }
+    let text = e.render().to_string();
+    let line = if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+        let usage = text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("Usage: "))
+            .unwrap_or("iga-contact <COMMAND>");
+        format!(
+            "a command is required (usage: {usage}; commands: run, check, reproduce; see --help)"
+        )
+    } else {
+        usage_line(&text)
+    };
+    eprintln!("error: {line}");
+    Err(ExitCode::from(2))
+}
+
+/// Joins the parts of clap's rendered usage error into one line.
+fn usage_line(text: &str) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut usage = None;
+    for l in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if let Some(u) = l.strip_prefix("Usage: ") {
+            usage = Some(u.to_string());
+        } else if l.starts_with("For more information") {
+            continue;
+        } else if let Some(m) = l.strip_prefix("error: ") {
+            parts.push(m.to_string());
+        } else if let Some(t) = l.strip_prefix("tip: ") {
+            parts.push(format!("; {t}"));
+        } else {
+            // A continuation: the arguments a message lists.
+            parts.push(format!(" {l}"));
+        }
+    }
+    let mut line: String = parts.concat();
+    if let Some(u) = usage {
+        line.push_str(&format!(" (usage: {u}; see --help)"));
+    } else {
+        line.push_str(" (see --help)");
+    }
+    one_line(&line)
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match parse_args() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
     // A file-size limit (`ulimit -f`) makes writes fail with EFBIG, reported
     // as an i/o error, instead of killing the process with SIGXFSZ.
     // SAFETY: setting a signal's disposition to "ignore" has no preconditions.

@@ -10,40 +10,57 @@
 //!
 //! # The memory model
 //!
-//! Per body with n₀ × n₁ control points of degrees p, q on E elements:
+//! It follows the data structures of the default solver, which factorises
+//! the bulk once by sparse Cholesky and iterates on the dense contact
+//! layer ([`crate::condense`]). Per body with n₀ × n₁ control points of
+//! degrees p, q and N = 2 n₀ n₁ DOFs:
 //!
-//! - element matrix entries T = E · 4 (p+1)²(q+1)² (the assembly stores one
-//!   coordinate triplet of 24 bytes per entry, and holds all element
-//!   matrices of a body, 8 bytes per entry, until they are scattered);
-//! - non-zeros nnz = 4 · n₀(2p+1) · n₁(2q+1) (basis functions overlap p+1
-//!   spans per direction: an upper bound, exact away from the ends for
-//!   maximal continuity);
-//! - contact triplets T_c = Σ points · (2 · element control points of the
-//!   slave and master)², since every contact point couples whole elements;
-//! - the factor of the kernel, [`FILL`] · nnz · log₂(DOFs) entries of 8
-//!   bytes (nested dissection on a 2D mesh), twice that for LU; the
-//!   Cholesky-plus-low-rank factorisation also keeps the dense block
-//!   Z = S⁻¹U of DOFs × rank entries, and two kernels (tied and secant)
-//!   are alive at once;
-//! - the VTU, [`VTU_BYTES_PER_POINT`] per sampled point (samples, cells
-//!   and the XML text).
+//! - stiffness non-zeros nnz = 4 · n₀(2p+1) · n₁(2q+1) (basis functions
+//!   overlap p+1 spans per direction: exact away from the ends for maximal
+//!   continuity), stored as values and row indices (16 bytes each);
+//! - the Cholesky factor's entries F(N, p) = exp(c₀ + c₁ℓ + c₂ℓ² + c₃r +
+//!   c₄rℓ + c₅r²), ℓ = ln N, r = ln(p+1): a fit ([`FILL_FIT`]) to the
+//!   exact counts of faer's symbolic analysis (AMD order) on rectangles of
+//!   degree 1 to 10 and 8² to 512² elements, within a factor 1.35 of every
+//!   one of them; stored in about [`FACTOR_BYTES`] per entry (values,
+//!   supernodal row indices, workspace), twice that for LU;
+//! - the contact couplings: every contact point couples all DOFs of its
+//!   slave and master elements, d = 2 (p+1)(q+1) + master, and the
+//!   pattern is built from the list of (row, column) pairs, d² per point,
+//!   held twice (as listed and sorted by column, 16 bytes a pair);
+//! - the layer: ℓ_c = 4 × the control points along the slave side (the two
+//!   rows of control points the normal stress reaches) plus 2 × those of a
+//!   deformable master side; its dense matrices (the Schur complement,
+//!   the kernel being factorised, its factor and a copy) are 4 · 8 ℓ_c²
+//!   bytes;
+//! - the VTU, [`VTU_BYTES_PER_POINT`] per sampled point.
 //!
-//! The peak is the largest of the assembly phase, the sparsity-pattern
-//! phase, and the solve (factor plus the matrices kept alive), plus a
-//! fixed [`BASE_BYTES`]. The constants were calibrated against the peak
-//! resident memory of `iga-contact run` on scenes from degree 1 to 10 (see
-//! `examples/memory_calibration.rs` and `RELIABILITY_NOTES.md`): the
-//! estimate is above every measured peak.
+//! The peak is the largest of three phases plus a fixed [`BASE_BYTES`]
+//! and the [`WORKING_BYTES`] of vectors and allocator caches:
+//! the pattern (couplings and the stiffness being built), the
+//! factorisation (stiffness, the bulk-plus-penalty values and the AMD
+//! pattern, 40 bytes per non-zero, with the factor and the layer's dense
+//! matrices), and the output (stiffness and the VTU). The chapter
+//! "Reliability" tabulates it against the peak resident memory (`VmHWM`)
+//! of `iga-contact run` (`examples/memory_table.rs`).
 
 use crate::error::{Error, Result};
 
-/// Bytes of a run that does not depend on its size (code, allocator arenas,
-/// thread stacks, fonts).
-pub const BASE_BYTES: f64 = 64.0 * MIB;
-/// Factor entries per matrix non-zero and per level of nested dissection.
-pub const FILL: f64 = 1.0;
-/// Safety factor on the modelled bytes (allocator slack, transient copies).
-pub const MARGIN: f64 = 1.25;
+/// Bytes of a run that does not depend on its size (code, allocator
+/// arenas, thread stacks): the peak of the smallest scenes.
+pub const BASE_BYTES: f64 = 16.0 * MIB;
+/// Bytes the solver's vectors and the allocator's per-thread caches add
+/// once a scene has more than [`WORKING_DOFS`] DOFs (measured: the peaks
+/// of scenes of 10³ to 10⁴ DOFs lie this far above the data structures).
+pub const WORKING_BYTES: f64 = 20.0 * MIB;
+/// DOFs from which [`WORKING_BYTES`] count in full (in proportion below).
+pub const WORKING_DOFS: f64 = 1000.0;
+/// Coefficients of the fit of ln F, the Cholesky factor's entries, in
+/// (1, ℓ, ℓ², r, rℓ, r²) with ℓ = ln(DOFs), r = ln(p+1).
+pub const FILL_FIT: [f64; 6] = [-0.16039, 1.42787, -0.017929, 1.76683, 0.152347, -0.434232];
+/// Bytes per factor entry: the value, the supernodal row indices and the
+/// numeric workspace (the measured `Condensation::bytes` is 9.7 per entry).
+pub const FACTOR_BYTES: f64 = 10.0;
 /// VTU bytes per sampled point: 88 B of samples, about 50 B of cells, and
 /// the XML text (≈ 250 B) with room for its growth.
 pub const VTU_BYTES_PER_POINT: f64 = 640.0;
@@ -103,18 +120,29 @@ pub struct PairSize {
     pub points: f64,
     /// DOFs coupled at one point (slave element plus master element).
     pub dofs_per_point: f64,
-    /// Rank of the low-rank part of the kernel: the DOFs of the contact
-    /// trace (both sides), twice that for θ ≠ 0.
-    pub rank: f64,
+    /// DOFs of the contact layer the pair contributes: those the normal
+    /// stress and the jump reach.
+    pub layer: f64,
 }
 
-/// How the kernels are factorised, for the fill estimate.
+/// How the bulk is factorised, for the size of its factor.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Factoring {
-    /// Cholesky (with a low-rank correction): one factor.
+    /// Cholesky: one triangle.
     Cholesky,
-    /// LU may be needed: room for both factors.
+    /// LU: room for both triangles.
     Lu,
+}
+
+/// Entries of the sparse Cholesky factor of a body with `dofs` DOFs and
+/// degree `degree` ([`FILL_FIT`]).
+pub fn factor_entries(dofs: f64, degree: usize) -> f64 {
+    let l = dofs.max(2.0).ln();
+    let r = ((degree + 1) as f64).ln();
+    let c = FILL_FIT;
+    let fit = (c[0] + c[1] * l + c[2] * l * l + c[3] * r + c[4] * r * l + c[5] * r * r).exp();
+    // A factor holds at most its full lower triangle.
+    fit.min(dofs * (dofs + 1.0) / 2.0)
 }
 
 /// The estimated size of a run.
@@ -129,12 +157,16 @@ pub struct Estimate {
     /// Points sampled for the VTU (0 if none is written).
     pub vtu_points: f64,
     pub factoring: Factoring,
-    /// The bytes of each phase: assembly, pattern, solve, output.
-    pub phases: [f64; 4],
+    /// Entries of the sparse factor (every body).
+    pub factor_entries: f64,
+    /// DOFs of the contact layer.
+    pub layer: f64,
+    /// The bytes of each phase ([`PHASES`]), [`BASE_BYTES`] included.
+    pub phases: [f64; 3],
 }
 
 /// Names of the phases, aligned with [`Estimate::phases`].
-pub const PHASES: [&str; 4] = ["assembly", "sparsity pattern", "solve", "output"];
+pub const PHASES: [&str; 3] = ["sparsity pattern", "factorisation", "output"];
 
 impl Estimate {
     /// Computes the phases from the sizes.
@@ -144,12 +176,7 @@ impl Estimate {
         vtu_subdivisions: Option<usize>,
         factoring: Factoring,
     ) -> Self {
-        let t: f64 = bodies.iter().map(BodySize::element_entries).sum();
-        let t_max = bodies
-            .iter()
-            .map(BodySize::element_entries)
-            .fold(0.0, f64::max);
-        let tc: f64 = pairs
+        let couplings: f64 = pairs
             .iter()
             .map(|p| p.points * p.dofs_per_point * p.dofs_per_point)
             .sum();
@@ -159,23 +186,25 @@ impl Estimate {
             let per = ((s + 1) * (s + 1)) as f64;
             bodies.iter().map(|b| b.n_elements() * per).sum()
         });
-        // Assembly: the triplets (reserved in full) and one body's element matrices.
-        let assembly = 24.0 * t + 8.0 * t_max;
-        // Pattern: the triplets, three index arrays over them, the pattern.
-        let pattern = 48.0 * (t + tc) + 8.0 * nnz + 40.0 * dofs;
-        // Kept for the solve: triplet values and slots, K and its pattern.
-        let kept = 16.0 * t + 8.0 * tc + 24.0 * nnz;
-        let levels = dofs.max(2.0).log2();
-        let fill = 8.0 * FILL * nnz * levels;
-        let rank: f64 = pairs.iter().map(|p| p.rank).sum();
-        let factor = 2.0
-            * match factoring {
-                Factoring::Cholesky => fill + 8.0 * dofs * rank,
-                Factoring::Lu => 2.0 * fill,
-            };
-        // A kernel build: contact triplets and two matrices of the pattern.
-        let solve = kept + 24.0 * tc + 32.0 * nnz + factor;
-        let output = kept + VTU_BYTES_PER_POINT * vtu_points;
+        let per_entry = match factoring {
+            Factoring::Cholesky => FACTOR_BYTES,
+            Factoring::Lu => 2.0 * FACTOR_BYTES,
+        };
+        let factor: f64 = bodies
+            .iter()
+            .map(|b| factor_entries(2.0 * b.control_points(), b.degree[0].max(b.degree[1])))
+            .sum();
+        let layer: f64 = pairs.iter().map(|p| p.layer).sum::<f64>().min(dofs);
+        // The stiffness: values and row indices.
+        let k = 16.0 * nnz;
+        // The pattern: the coupling pairs, listed and sorted, while the
+        // stiffness is built.
+        let pattern = 32.0 * couplings + k;
+        // The factorisation: the stiffness, the bulk-plus-penalty values
+        // and the AMD pattern of the interior, the factor, and the dense
+        // matrices of the layer.
+        let factorisation = k + 24.0 * nnz + per_entry * factor + 32.0 * layer * layer;
+        let output = k + VTU_BYTES_PER_POINT * vtu_points;
         Self {
             bodies,
             pairs,
@@ -183,7 +212,10 @@ impl Estimate {
             nonzeros: nnz,
             vtu_points,
             factoring,
-            phases: [assembly, pattern, solve, output].map(|b| MARGIN * b + BASE_BYTES),
+            factor_entries: factor,
+            layer,
+            phases: [pattern, factorisation, output]
+                .map(|b| b + BASE_BYTES + WORKING_BYTES * (dofs / WORKING_DOFS).min(1.0)),
         }
     }
 
@@ -194,7 +226,7 @@ impl Estimate {
 
     /// The phase that sets the peak.
     pub fn peak_phase(&self) -> &'static str {
-        let k = (0..4)
+        let k = (0..PHASES.len())
             .max_by(|&a, &b| self.phases[a].total_cmp(&self.phases[b]))
             .unwrap_or(0);
         PHASES[k]
@@ -218,7 +250,9 @@ impl Estimate {
             human_bytes(budget.bytes as f64),
             budget.source
         );
-        if self.peak_phase() == "output" && self.vtu_points > 0.0 {
+        // The VTU is named only when its samples are most of the peak.
+        let vtu_bytes = VTU_BYTES_PER_POINT * self.vtu_points;
+        if self.peak_phase() == "output" && vtu_bytes > 0.5 * peak {
             return Err(Error::invalid(
                 vtu_field,
                 format!("{} sample points", human_count(self.vtu_points)),
@@ -228,7 +262,7 @@ impl Estimate {
         let heaviest = self
             .bodies
             .iter()
-            .max_by(|a, b| a.element_entries().total_cmp(&b.element_entries()));
+            .max_by(|a, b| a.nonzeros().total_cmp(&b.nonzeros()));
         let (field, value) = heaviest.map_or(("body".to_string(), String::new()), |b| {
             (b.field.clone(), b.value.clone())
         });
@@ -247,8 +281,10 @@ pub struct Budget {
     pub source: String,
 }
 
-/// Share of the physical memory a run may use by default.
-pub const PHYSICAL_SHARE: f64 = 0.75;
+/// Share of the available memory (`MemAvailable`: free memory plus what
+/// the kernel can reclaim at once) a run may use by default: all of it, as
+/// the estimate follows the measured peak (see the module's model).
+pub const PHYSICAL_SHARE: f64 = 1.0;
 /// Share of an address-space limit (`ulimit -v`) a run may use: virtual
 /// memory also holds code, thread stacks and allocator arenas.
 pub const ADDRESS_SPACE_SHARE: f64 = 0.8;
@@ -262,23 +298,25 @@ impl Budget {
         }
     }
 
-    /// The default: [`PHYSICAL_SHARE`] of the physical memory
-    /// (`/proc/meminfo`), or less under an address-space limit.
+    /// The default: [`PHYSICAL_SHARE`] of the available memory
+    /// (`MemAvailable` of `/proc/meminfo`, else `MemTotal`), or less under
+    /// an address-space limit.
     pub fn from_machine() -> Self {
-        let mut budget = match meminfo_total() {
-            Some(total) => Self {
-                bytes: (total as f64 * PHYSICAL_SHARE) as u64,
-                source: format!(
-                    "{:.0}% of the physical memory of {}; --max-memory overrides",
-                    100.0 * PHYSICAL_SHARE,
-                    human_bytes(total as f64)
-                ),
-            },
-            None => Self {
-                bytes: u64::MAX,
-                source: "physical memory unknown".into(),
-            },
-        };
+        let available = meminfo("MemAvailable:").map(|b| (b, "available memory (MemAvailable)"));
+        let mut budget =
+            match available.or_else(|| meminfo("MemTotal:").map(|b| (b, "physical memory"))) {
+                Some((bytes, what)) => Self {
+                    bytes: (bytes as f64 * PHYSICAL_SHARE) as u64,
+                    source: format!(
+                        "the {what} of {}; --max-memory overrides",
+                        human_bytes(bytes as f64)
+                    ),
+                },
+                None => Self {
+                    bytes: u64::MAX,
+                    source: "physical memory unknown".into(),
+                },
+            };
         if let Some(limit) = address_space_limit() {
             let usable = (limit as f64 * ADDRESS_SPACE_SHARE) as u64;
             if usable < budget.bytes {
@@ -298,8 +336,13 @@ impl Budget {
 
 /// `MemTotal` from `/proc/meminfo`, in bytes.
 pub(crate) fn meminfo_total() -> Option<u64> {
+    meminfo("MemTotal:")
+}
+
+/// A line of `/proc/meminfo` (`key` with its colon), in bytes.
+fn meminfo(key: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let line = text.lines().find(|l| l.starts_with(key))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
 }
@@ -380,10 +423,26 @@ mod tests {
     }
 
     #[test]
-    fn the_budget_is_below_the_physical_memory() {
+    fn the_budget_is_the_available_memory_at_most() {
         let b = Budget::from_machine();
         if let Some(total) = meminfo_total() {
-            assert!(b.bytes < total, "{b:?}");
+            assert!(b.bytes <= total, "{b:?}");
+        }
+    }
+
+    /// The fit stays within the full triangle, and grows with the mesh
+    /// and the degree over the range it was fitted on.
+    #[test]
+    fn the_factor_fit_grows_with_size_and_degree() {
+        assert_eq!(factor_entries(4.0, 1), 10.0);
+        for p in 1..=10 {
+            let mut last = 0.0;
+            for m in [8usize, 16, 64, 256, 1024] {
+                let dofs = 2.0 * ((m + p) * (m + p)) as f64;
+                let f = factor_entries(dofs, p);
+                assert!(f > last && f > dofs, "p = {p}, {m}²: {f}");
+                last = f;
+            }
         }
     }
 }

@@ -345,8 +345,11 @@ impl fmt::Display for RunReport {
             self.contact_force[1],
             self.seconds
         )?;
+        // The warnings are lines of their own (the tool prints them on
+        // stderr), so that the place written to follows the files.
         match self.files.len() {
             0 => write!(f, "; no outputs requested"),
+            1 => write!(f, "; wrote 1 file"),
             n => write!(f, "; wrote {n} files"),
         }
     }
@@ -1342,32 +1345,26 @@ impl Scene {
                 let mut degree = s.degree[0].max(s.degree[1]);
                 let mut coupled = s.element_points();
                 let mut master_breaks = 2.0;
-                let mut trace = s.n[along] as f64;
+                // Two rows of slave control points reach the normal stress.
+                let mut layer = 4.0 * s.n[along] as f64;
                 if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
                     let m = &sizes[names[name.as_str()]];
                     degree = degree.max(m.degree[0].max(m.degree[1]));
                     coupled += m.element_points();
                     master_breaks = m.elements[side.along()] as f64 + 1.0;
-                    trace += m.n[side.along()] as f64;
+                    layer += 2.0 * m.n[side.along()] as f64;
                 }
                 let g = c.nitsche.points(degree) as f64;
-                let twice = if c.nitsche.theta != Theta::Incomplete {
-                    2.0
-                } else {
-                    1.0
-                };
                 PairSize {
                     points: g * (s.elements[along] as f64 + master_breaks),
                     dofs_per_point: 2.0 * coupled,
-                    rank: twice * 2.0 * trace,
+                    layer,
                 }
             })
             .collect();
-        let lu = self
-            .contacts
-            .iter()
-            .any(|c| c.nitsche.theta == Theta::Symmetric)
-            || self.solver.factorisation == Factorisation::Lu;
+        // The bulk is factorised by Cholesky whatever θ (the layer's dense
+        // kernels take the non-symmetric part), by LU only if asked.
+        let lu = self.solver.factorisation == Factorisation::Lu;
         let vtu = self.output.vtu.then_some(self.output.vtu_subdivisions);
         let factoring = if lu {
             Factoring::Lu

@@ -177,13 +177,71 @@ fn reproduce_rejects_an_unknown_study() {
     assert!(line.contains("no-such-study"), "{line}");
 }
 
+/// Every usage error is one `error:` line naming what is wrong (exit 2),
+/// while `--help` and `--version` still print in full (exit 0).
 #[test]
-fn usage_errors_exit_with_2() {
+fn usage_errors_are_one_line_naming_the_argument() {
     let dir = workdir("usage");
-    let o = run(&dir, &["frobnicate"]);
-    assert_eq!(o.status.code(), Some(2));
-    let o = run(&dir, &["run"]);
-    assert_eq!(o.status.code(), Some(2));
+    for (args, names) in [
+        (&["frobnicate"][..], "frobnicate"),
+        (&["run"][..], "<SCENE>"),
+        (&["check"][..], "<SCENE>"),
+        (&["run", "a.toml", "b.toml"][..], "'b.toml'"),
+        (&["run", "a.toml", "--bogus"][..], "--bogus"),
+        (&["run", "a.toml", "--max-memory"][..], "--max-memory"),
+        (&["reproduce", "--all=3"][..], "--all"),
+        (&[][..], "run, check, reproduce"),
+    ] {
+        let o = run(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(line.contains(names), "{args:?}: {line}");
+        assert!(stdout(&o).is_empty(), "{args:?}");
+    }
+    for args in [&["--help"][..], &["run", "--help"][..], &["--version"][..]] {
+        let o = run(&dir, args);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
+    }
+    assert!(stdout(&run(&dir, &["run", "--help"])).contains("--max-memory"));
+}
+
+/// A run with a warning: the run line tells the files and where they
+/// went, and each cause is one `warning:` line on stderr, told once.
+#[test]
+fn a_warned_run_prints_its_files_then_one_line_per_warning() {
+    let dir = workdir("warned-run");
+    // Hertz 8×8 with θ = 0 and a penalty far below its bound, solved by
+    // the default solver (which converges there, see tests/scene.rs).
+    let hertz = std::fs::read_to_string(scene("hertz.toml")).unwrap();
+    let text = format!(
+        "{}\n[output]\niterations = true\npressure_profile = true\nsummary = true\n",
+        hertz.split("# ANCHOR: solver").next().unwrap()
+    )
+    .replace("penalty_factor = 1.0", "penalty_factor = 1e-3");
+    std::fs::write(dir.join("weak.toml"), text).unwrap();
+    let o = run(&dir, &["run", "weak.toml", "--out", "res"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "{out}");
+    assert!(lines[0].ends_with("; wrote 3 files to res"), "{out}");
+    assert!(!lines[0].contains("warning"), "{out}");
+    let err = stderr(&o);
+    let warnings: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(!warnings.is_empty(), "no warning: {err}");
+    assert!(
+        warnings
+            .iter()
+            .all(|l| l.starts_with("warning: weak.toml: ")),
+        "{err}"
+    );
+    // the penalty of contact[0] below its bound: one line, not two
+    let penalty = warnings
+        .iter()
+        .filter(|l| l.contains("stability bound"))
+        .count();
+    assert_eq!(penalty, 1, "{err}");
 }
 
 /// A block on a rigid floor with the given degree, elements and material.
@@ -292,4 +350,60 @@ fn check_at_the_documented_maxima_answers_without_assembling() {
             other => panic!("{name}: exit {other:?}: {}", stderr(&o)),
         }
     }
+}
+
+/// Runs the binary and returns its peak resident memory (`VmHWM`, which
+/// `wait4` reports as `ru_maxrss`), in bytes.
+fn peak_of_run(dir: &Path, args: &[&str]) -> f64 {
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, for its rusage
+    let child = Command::new(BIN)
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the binary runs");
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is a valid value for wait4 to fill in.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: waits for our own child; status and usage are valid out-pointers.
+    let r = unsafe { libc::wait4(child.id() as i32, &mut status, 0, &mut usage) };
+    assert_eq!(r, child.id() as i32);
+    assert!(
+        libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+        "{args:?}: {status}"
+    );
+    usage.ru_maxrss as f64 * 1024.0
+}
+
+/// The estimate follows the measured peak within a factor 1.5 either way,
+/// on a scene whose factorisation sets the peak (p = 2, 128²) and on ones
+/// where the contact couplings do (high degree); the full ladder is the
+/// memory table of the chapter "Reliability" (`examples/memory_table.rs`).
+#[test]
+fn the_memory_estimate_is_within_one_and_a_half_of_the_measured_peak() {
+    let dir = workdir("memory-estimate");
+    for (p, m) in [(2, 128), (6, 32), (10, 8)] {
+        let text = block(p, [m, m], "1.0e6", "1.0e4") + "\n[output]\nsummary = true\n";
+        let name = format!("p{p}_{m}.toml");
+        std::fs::write(dir.join(&name), &text).unwrap();
+        let estimate = iga_contact::scene::Scene::from_toml_str(&text)
+            .unwrap()
+            .estimate()
+            .unwrap()
+            .peak_bytes();
+        let peak = peak_of_run(&dir, &["run", &name, "--out", "out", "--max-memory", "1T"]);
+        let ratio = estimate / peak;
+        eprintln!("p = {p}, {m}²: estimate {estimate:.3e} B, peak {peak:.3e} B, ratio {ratio:.2}");
+        assert!((1.0 / 1.5..=1.5).contains(&ratio), "p = {p}, {m}²: {ratio}");
+    }
+    // Hertz p = 2 on 512² (without the VTU) needs about 3 GB: a budget of
+    // 4 GiB admits it.
+    let hertz = std::fs::read_to_string(scene("hertz.toml"))
+        .unwrap()
+        .replace("elements = [8, 8]", "elements = [512, 512]")
+        .replace("vtu = true ", "vtu = false");
+    std::fs::write(dir.join("hertz512.toml"), hertz).unwrap();
+    let o = run(&dir, &["check", "hertz512.toml", "--max-memory", "4G"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }

@@ -345,9 +345,11 @@ fn a_scene_without_outputs_writes_nothing() {
     );
 }
 
-/// A converged run whose answer may not be the wanted one says so on its
-/// report line (the atlas's case: Hertz 8×8, θ = 0, penalty factor 10⁻³,
-/// where the solver converges to a p₀ far off the reference).
+/// A converged run whose answer may not be the wanted one says so in its
+/// report (the atlas's case: Hertz 8×8, θ = 0, penalty factor 10⁻³,
+/// where the solver converges to a p₀ far off the reference); the report
+/// line itself stays one line of facts, the tool printing each warning on
+/// a line of its own.
 #[test]
 fn a_run_below_the_stability_bound_reports_its_warning() {
     let dir = tmp("warned");
@@ -367,6 +369,11 @@ fn a_run_below_the_stability_bound_reports_its_warning() {
         text.starts_with("contact[0]: ") && text.contains("stability bound"),
         "{text}"
     );
+    assert!(
+        line.ends_with("no outputs requested"),
+        "{line}"
+    );
+    assert!(report.warnings[0].to_string().contains("stability bound"));
     // at the empirical penalty the same run carries no warning
     let mut fine = Scene::shipped("hertz.toml").unwrap();
     fine.solver = SolverOptions::default();
