@@ -29,7 +29,7 @@
 //! ```
 
 use crate::assembly::Load;
-use crate::contact::{contact_points, ContactPair, Master, Nitsche, Theta};
+use crate::contact::{contact_points, ContactPair, Master, Nitsche};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;

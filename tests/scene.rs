@@ -369,10 +369,7 @@ fn a_run_below_the_stability_bound_reports_its_warning() {
         text.starts_with("contact[0]: ") && text.contains("stability bound"),
         "{text}"
     );
-    assert!(
-        line.ends_with("no outputs requested"),
-        "{line}"
-    );
+    assert!(line.ends_with("no outputs requested"), "{line}");
     assert!(report.warnings[0].to_string().contains("stability bound"));
     // at the empirical penalty the same run carries no warning
     let mut fine = Scene::shipped("hertz.toml").unwrap();
