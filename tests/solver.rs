@@ -416,7 +416,11 @@ fn a_contact_zone_on_one_point_is_flagged() {
     let s = solve(&p, &SolverOptions::default()).unwrap();
     assert_eq!(
         s.warnings,
-        vec![Warning::UnresolvedContact { pair: 0, active: 1 }]
+        vec![Warning::UnresolvedContact {
+            pair: 0,
+            active: 1,
+            elements: 1
+        }]
     );
     let only = p.points.iter().find(|cp| cp.p(&s.full) <= 0.0).unwrap();
     let p0 = iga_contact::post::PressureProfile::dense(&p, &s.full)
