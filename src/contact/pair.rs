@@ -82,11 +82,11 @@ pub struct ContactPoint {
     /// non-zero at x̄². `sn` and `jn` are indexed like this list.
     pub dofs: Vec<usize>,
     /// The normal stress σ_n(u) = n¹·σ(u¹)n¹ at x¹ as a linear functional:
-    /// σ_n(u) = Σ_k sn[k] u[dofs[k]]. It uses the slave's basis gradients and
+    /// σ_n(u) = Σ_k `sn[k] u[dofs[k]]`. It uses the slave's basis gradients and
     /// material only, so its entries on master DOFs are zero.
     pub sn: Vec<f64>,
     /// The jump of the normal displacement ⟦u_n⟧ = (u¹(x¹) − u²(x̄²))·n¹ as
-    /// a linear functional, ⟦u_n⟧ = Σ_k jn[k] u[dofs[k]]: R¹_A n¹ on the slave
+    /// a linear functional, ⟦u_n⟧ = Σ_k `jn[k] u[dofs[k]]`: R¹_A n¹ on the slave
     /// DOFs, −R²_B n¹ on the master's. The gap is g_n = g₀ − ⟦u_n⟧, Eq. (5).
     pub jn: Vec<f64>,
     /// False on a slave element whose geometric map is singular at an end

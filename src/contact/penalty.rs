@@ -141,8 +141,8 @@ pub fn sharp_penalty(trace_constant: f64, theta: f64, safety: f64) -> f64 {
 /// below the bound under which the θ-family loses coercivity
 /// ([`crate::contact::penalty::stability_bound`] of the point's slave
 /// element), in all and among the *active* points — those with P ≤ 0 at a
-/// solution ([`penalty_stability`]) or, before any solve, those where the
-/// bodies first touch ([`first_touch_stability`]) — and how far below.
+/// solution ([`penalty_stability`](crate::post::penalty_stability)) or, before any solve, those where the
+/// bodies first touch ([`first_touch_stability`](crate::post::first_touch_stability)) — and how far below.
 ///
 /// Below the bound, the discrete problem restricted to an active set need
 /// not be coercive, so a converged solution need not be the only one: two
