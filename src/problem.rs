@@ -8,6 +8,7 @@ use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::linsolve::mul;
+use crate::wellposed::{free_modes, RigidBasis};
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
 
@@ -408,41 +409,16 @@ impl Problem {
     pub fn floating_modes(&self) -> Vec<Vec<f64>> {
         let mut modes = Vec::new();
         for (b, body) in self.bodies.iter().enumerate() {
-            let pts = &body.space.patch.points;
-            let c = pts
-                .iter()
-                .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
-            let c = [c[0] / pts.len() as f64, c[1] / pts.len() as f64];
-            // translations x, y and the rotation about the centroid
-            let mode = |k: usize, p: [f64; 2], comp: usize| match (k, comp) {
-                (0, 0) | (1, 1) => 1.0,
-                (2, 0) => -(p[1] - c[1]),
-                (2, 1) => p[0] - c[0],
-                _ => 0.0,
-            };
-            let mut mtm = nalgebra::Matrix3::<f64>::zeros();
-            for (a, p) in pts.iter().enumerate() {
-                for comp in 0..2 {
-                    if self.map.free(self.map.global(b, a, comp)).is_none() {
-                        let row = nalgebra::Vector3::from_fn(|k, _| mode(k, *p, comp));
-                        mtm += row * row.transpose();
+            let basis = RigidBasis::of(body);
+            for coef in free_modes(body, b, &self.map, &basis) {
+                let mut v = vec![0.0; self.map.n_total()];
+                for (a, p) in body.space.patch.points.iter().enumerate() {
+                    for comp in 0..2 {
+                        v[self.map.global(b, a, comp)] =
+                            (0..3).map(|m| coef[m] * basis.value(m, *p, comp)).sum();
                     }
                 }
-            }
-            let eig = mtm.symmetric_eigen();
-            let tol = 1e-10 * (1.0 + mtm.trace());
-            for (k, lambda) in eig.eigenvalues.iter().enumerate() {
-                if *lambda <= tol {
-                    let coef = eig.eigenvectors.column(k);
-                    let mut v = vec![0.0; self.map.n_total()];
-                    for (a, p) in pts.iter().enumerate() {
-                        for comp in 0..2 {
-                            v[self.map.global(b, a, comp)] =
-                                (0..3).map(|m| coef[m] * mode(m, *p, comp)).sum();
-                        }
-                    }
-                    modes.push(v);
-                }
+                modes.push(v);
             }
         }
         modes

@@ -76,14 +76,17 @@ pub const UNHELD: f64 = 1e-6;
 
 /// A body's rigid motions: translation x, translation y, and rotation
 /// about `centre`, scaled by `size` so that all three move the body by
-/// about one unit.
-struct RigidBasis {
+/// about one unit. Being dimensionless, the basis judges a mode free or
+/// held the same way in any unit of length (a rotation in metres of a
+/// body one nanometre wide would otherwise look 1e-18 times weaker than a
+/// translation, and one a thousand kilometres wide 1e12 times stronger).
+pub(crate) struct RigidBasis {
     centre: [f64; 2],
     size: f64,
 }
 
 impl RigidBasis {
-    fn of(body: &Body) -> Self {
+    pub(crate) fn of(body: &Body) -> Self {
         let pts = &body.space.patch.points;
         let n = pts.len().max(1) as f64;
         let c = pts
@@ -100,7 +103,7 @@ impl RigidBasis {
     }
 
     /// Component `comp` of mode `k` at `p`.
-    fn value(&self, k: usize, p: [f64; 2], comp: usize) -> f64 {
+    pub(crate) fn value(&self, k: usize, p: [f64; 2], comp: usize) -> f64 {
         match (k, comp) {
             (0, 0) | (1, 1) => 1.0,
             (2, 0) => -(p[1] - self.centre[1]) / self.size,
@@ -142,7 +145,12 @@ fn short(v: f64) -> String {
 
 /// Free rigid modes of one body: coefficient vectors (over [`RigidBasis`])
 /// that move no prescribed DOF.
-fn free_modes(body: &Body, b: usize, map: &DofMap, basis: &RigidBasis) -> Vec<Vector3<f64>> {
+pub(crate) fn free_modes(
+    body: &Body,
+    b: usize,
+    map: &DofMap,
+    basis: &RigidBasis,
+) -> Vec<Vector3<f64>> {
     let mut mtm = Matrix3::<f64>::zeros();
     for (a, p) in body.space.patch.points.iter().enumerate() {
         for comp in 0..2 {
