@@ -75,23 +75,52 @@ fn the_discrete_load_is_half_the_disk_weight() {
     }
 }
 
-/// The paper's headline mesh against the closed-form Hertz values. The
-/// tolerances (3 % on p₀, 4 % on a) hold for the discretisation itself,
-/// not only for one solver: see the chapter for why Hertz is only
-/// asymptotic here.
+/// The paper's headline mesh against the converged solution of the same
+/// finite disk (p = 3 on 64², whose own distance from Hertz's half-plane
+/// formula is the finite disk's, not the mesh's). Measured: p₀ +1.4 %,
+/// −0.58 %, −0.21 % and a +5.6 %, +2.4 %, +0.92 % on 8², 16², 32²: each
+/// halving of h divides both errors by 2.3 to 2.8. The test asks for at
+/// least 2 (the rate of a quantity read off a kink of the pressure, which
+/// the L² rate p + 1 does not govern) and bounds 8² at about 1.4× its
+/// errors.
 #[test]
-fn hertz_8x8_p2_is_within_3_percent_in_p0_and_4_percent_in_a() {
-    let p = hertz(2, 8, Theta::Incomplete);
-    let s = solved(&p, SolverKind::Bfgs);
-    let m = PressureProfile::dense(&p, &s.full).unwrap().measures(0);
-    let exact = setup::analytic(&hertz_scene(2, 8, Theta::Incomplete)).unwrap();
-    let (e_p0, e_a) = (
-        relative(m.p0, exact.p0),
-        relative(m.half_width, exact.half_width),
+fn hertz_8x8_p2_is_within_its_discretisation_error_of_the_converged_disk() {
+    let measure = |p: usize, n: usize| {
+        let problem = hertz(p, n, Theta::Incomplete);
+        let s = solved(&problem, SolverKind::Bfgs);
+        PressureProfile::dense(&problem, &s.full)
+            .unwrap()
+            .measures(0)
+    };
+    let reference = measure(3, 64);
+    let errors: Vec<(f64, f64)> = [8, 16, 32]
+        .iter()
+        .map(|&n| {
+            let m = measure(2, n);
+            (
+                relative(m.p0, reference.p0),
+                relative(m.half_width, reference.half_width),
+            )
+        })
+        .collect();
+    let (e_p0, e_a) = errors[0];
+    assert!(e_p0.abs() <= P0_8X8, "p0 error {:.3} %", 100.0 * e_p0);
+    assert!(e_a.abs() <= A_8X8, "half-width error {:.3} %", 100.0 * e_a);
+    assert!(
+        errors
+            .windows(2)
+            .all(|w| w[0].0.abs() >= 2.0 * w[1].0.abs() && w[0].1.abs() >= 2.0 * w[1].1.abs()),
+        "the errors do not halve with h: {errors:?}"
     );
-    assert!(e_p0.abs() <= 0.03, "p0 error {:.3} %", 100.0 * e_p0);
-    assert!(e_a.abs() <= 0.04, "half-width error {:.3} %", 100.0 * e_a);
+    // and the converged disk sits where the chapter says: a little above
+    // Hertz's half-plane p₀ (the finite disk is stiffer than a half-plane)
+    let exact = setup::analytic(&hertz_scene(3, 64, Theta::Incomplete)).unwrap();
+    let offset = relative(reference.p0, exact.p0);
+    assert!(offset > 0.0 && offset < 0.03, "reference vs Hertz {offset}");
 }
+
+const P0_8X8: f64 = 0.02;
+const A_8X8: f64 = 0.08;
 
 /// The dense profile is a pressure: non-negative, zero beyond the
 /// half-width and positive inside it; its peak is p₀.

@@ -8,8 +8,11 @@
 mod getfem;
 
 mod common;
+#[path = "../examples/common/hertz.rs"]
+mod setup;
 
 use iga_contact::post::{PressureProfile, Reference};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, SolverOptions};
 use iga_contact::Error;
 
@@ -34,24 +37,37 @@ fn the_committed_runs_read_and_describe_the_hertz_problem() {
     assert!(!peer.version.is_empty() && peer.date.len() == 10);
     // GetFEM's brick formed Eq. (11) at every contact point
     assert!(peer.runs.iter().all(|r| r.gamma_deviation < 1e-12));
-    // the same problem as ours: p₀ and a within a few percent of the
-    // reference of the chapter, on the finest Q2 mesh at the paper's penalty
-    let finest = peer
-        .runs
-        .iter()
-        .filter(|r| r.degree == 2 && r.factor == 1.0 && r.converged)
-        .max_by_key(|r| r.elements)
+    // the same problem as ours: GetFEM's own mesh of the half disk is not
+    // ours (it has other DOF counts), so the two agree in the limit, not
+    // mesh by mesh. Its Q1 and Q2 ladders at the paper's penalty converge
+    // to our p = 3 64² solution measured with the script's estimator (the
+    // peak of −σ_yy on its sample points): the distance falls mesh by mesh
+    // from 8² on, and the finest converged run is within 0.5 % of it
+    // (measured 0.21 % at Q1 64²; the Q1 error falls by about 2× a mesh).
+    let problem = setup::scene(RefineSpec::iga(3, [64, 64]))
+        .unwrap()
+        .build()
         .unwrap();
-    let hertz = common::hertz(2, 8, Default::default());
-    let s = solve(&hertz, &SolverOptions::default()).unwrap();
-    let m = PressureProfile::dense(&hertz, &s.full).unwrap().measures(0);
-    assert!(
-        (finest.p0 / m.p0 - 1.0).abs() < 0.05,
-        "{} {}",
-        finest.p0,
-        m.p0
-    );
-    assert!((finest.half_width / m.half_width - 1.0).abs() < 0.1);
+    let s = solve(&problem, &SolverOptions::default()).unwrap();
+    let reference = getfem::peak_pressure(&problem, &s.full).unwrap();
+    for degree in [1, 2] {
+        let errors: Vec<(usize, f64)> = peer
+            .runs
+            .iter()
+            .filter(|r| r.degree == degree && r.factor == 1.0 && r.converged && r.elements >= 8)
+            .map(|r| (r.elements, (r.p0 / reference - 1.0).abs()))
+            .collect();
+        assert!(errors.len() >= 2, "Q{degree}: {errors:?}");
+        assert!(
+            errors
+                .windows(2)
+                .all(|w| w[0].0 < w[1].0 && w[1].1 < w[0].1),
+            "Q{degree}: {errors:?}"
+        );
+        if degree == 1 {
+            assert!(errors.last().unwrap().1 <= 5e-3, "Q1: {errors:?}");
+        }
+    }
 }
 
 #[test]
