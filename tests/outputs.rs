@@ -25,30 +25,7 @@ fn workdir(name: &str) -> PathBuf {
 /// scene taken out: the `[timing]` table of `summary.toml` (wall-clock
 /// times) and, in the manifest, the byte counts that follow from it.
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut files = atomic::snapshot(dir).unwrap();
-    for (name, bytes) in files.iter_mut() {
-        let text = String::from_utf8_lossy(bytes).into_owned();
-        let kept: Vec<&str> = match name.as_str() {
-            "summary.toml" => {
-                let mut in_timing = false;
-                text.lines()
-                    .filter(|l| {
-                        if l.starts_with('[') {
-                            in_timing = l.trim() == "[timing]";
-                        }
-                        !in_timing
-                    })
-                    .collect()
-            }
-            atomic::MANIFEST => text
-                .lines()
-                .filter(|l| !l.starts_with("bytes = "))
-                .collect(),
-            _ => continue,
-        };
-        *bytes = kept.join("\n").into_bytes();
-    }
-    files
+    iga_contact::timing::untimed_snapshot(dir).unwrap()
 }
 
 /// Staging entries beside `target`, by name.

@@ -11,7 +11,7 @@ mod common;
 #[path = "../examples/common/hertz.rs"]
 mod setup;
 
-use iga_contact::post::{PressureProfile, Reference};
+use iga_contact::post::Reference;
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, SolverOptions};
 use iga_contact::Error;

@@ -58,14 +58,25 @@ impl Outcome {
             && match self.code {
                 // warnings (one line each) are all an answer may print
                 Some(0) => lines.iter().all(|l| l.starts_with("warning: ")),
-                Some(1 | 2 | 130 | 143) => lines.len() == 1 && lines[0].starts_with("error: "),
+                // one error line, last, after the warnings known before
+                // the failure (a penalty below its bound may be why)
+                Some(1 | 2 | 130 | 143) => {
+                    lines.last().is_some_and(|l| l.starts_with("error: "))
+                        && lines[..lines.len() - 1]
+                            .iter()
+                            .all(|l| l.starts_with("warning: "))
+                }
                 _ => false,
             }
     }
 
     /// The error line without `error: ` and the scene file's name.
     pub fn message(&self) -> String {
-        let m = self.stderr.trim();
+        let m = self
+            .stderr
+            .lines()
+            .rfind(|l| l.starts_with("error: "))
+            .unwrap_or(self.stderr.trim());
         let m = m.strip_prefix("error: ").unwrap_or(m);
         m.split_once(".toml: ")
             .map_or(m, |(_, rest)| rest)

@@ -160,117 +160,7 @@ fn refinement(chapter: &mut Chapter) -> Result<()> {
 // ANCHOR_END: refinement
 
 // ---------------------------------------------------------------------------
-// 3. memory estimate against measured peaks
-// ---------------------------------------------------------------------------
-
-// ANCHOR: memory
-/// Runs scenes of every kind of weight and compares the estimate with the
-/// peak resident memory of the run; returns (smallest, largest) ratio.
-fn memory(work: &Path, chapter: &mut Chapter) -> Result<(f64, f64)> {
-    let (rect, disk) = (SHAPES[0].1, SHAPES[1].1);
-    // (label, geometry, degree, elements, contact keys, extra output keys)
-    type Case<'a> = (&'a str, &'a str, usize, [usize; 2], &'a str, &'a str);
-    let cases: [Case; 19] = [
-        ("rectangle", rect, 1, [256, 256], "", ""),
-        ("rectangle", rect, 1, [512, 512], "", ""),
-        ("rectangle", rect, 2, [128, 128], "", ""),
-        ("rectangle", rect, 2, [256, 256], "", ""),
-        ("rectangle", rect, 3, [128, 128], "", ""),
-        ("rectangle", rect, 4, [64, 64], "", ""),
-        ("rectangle", rect, 4, [1024, 1], "", ""),
-        ("rectangle", rect, 6, [48, 48], "", ""),
-        ("rectangle", rect, 8, [24, 24], "", ""),
-        ("rectangle", rect, 10, [16, 16], "", ""),
-        ("rectangle", rect, 10, [24, 24], "", ""),
-        (
-            "rectangle, VTU ×16",
-            rect,
-            2,
-            [64, 64],
-            "",
-            "vtu = true\nvtu_subdivisions = 16",
-        ),
-        ("half disk", disk, 2, [128, 128], "", ""),
-        (
-            "half disk, VTU ×8",
-            disk,
-            3,
-            [64, 64],
-            "",
-            "vtu = true\nvtu_subdivisions = 8",
-        ),
-        ("half disk", disk, 5, [32, 32], "", ""),
-        ("rectangle, θ = 1", rect, 2, [128, 128], "theta = 1", ""),
-        ("half disk, θ = 1", disk, 4, [48, 48], "theta = 1", ""),
-        ("rectangle, θ = −1", rect, 3, [96, 96], "theta = -1", ""),
-        (
-            "rectangle, LU",
-            rect,
-            1,
-            [256, 256],
-            "",
-            "[solver]\nfactorisation = \"lu\"",
-        ),
-    ];
-    let mut table = Table::new(vec![
-        Column::plain("scene", "scene"),
-        Column::plain("degree", "p"),
-        Column::plain("mesh", "mesh"),
-        Column::plain("dofs", "DOFs"),
-        Column::new("nonzeros", "non-zeros", Unit::None, Format::Sci(2)).csv_only(),
-        Column::new("estimate", "estimate", Unit::Megabyte, Format::Fixed(0)),
-        Column::new("peak", "peak", Unit::Megabyte, Format::Fixed(0)),
-        Column::new("ratio", "peak / est.", Unit::None, Format::Fixed(2)),
-        Column::new("seconds", "run", Unit::Second, Format::Fixed(1)).csv_only(),
-    ]);
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    for (label, geometry, p, e, contact, tail) in cases {
-        let output = format!("[output]\nsummary = true\n{tail}\n");
-        let mut text = body_scene(label, geometry, &refine(p, e), "", &output);
-        if !contact.is_empty() {
-            text = text.replace(
-                "to = [2.0, 0.0] } }\n",
-                &format!("to = [2.0, 0.0] }} }}\nnitsche = {{ {contact} }}\n"),
-            );
-        }
-        let estimate = Scene::from_toml_str(&text)?.estimate()?;
-        std::fs::write(work.join("memory.toml"), &text).expect("writable work folder");
-        let args = [
-            "run",
-            "memory.toml",
-            "--out",
-            "memory-out",
-            "--max-memory",
-            "1T",
-        ];
-        let o = launch(work, &args, Launch::default());
-        if o.code != Some(0) {
-            eprintln!("memory: {label}, p = {p}, {e:?}: {}", o.stderr.trim());
-            continue;
-        }
-        let ratio = o.peak_bytes / estimate.peak_bytes();
-        (lo, hi) = (lo.min(ratio), hi.max(ratio));
-        table.push(vec![
-            label.into(),
-            p.into(),
-            mesh(e).into(),
-            estimate.dofs.into(),
-            estimate.nonzeros.into(),
-            estimate.peak_bytes().into(),
-            o.peak_bytes.into(),
-            ratio.into(),
-            o.seconds.into(),
-        ])?;
-    }
-    chapter.table("memory", &table)?;
-    chapter.timed("memory.csv");
-    chapter.timed("memory.md");
-    Ok((lo, hi))
-}
-// ANCHOR_END: memory
-
-// ---------------------------------------------------------------------------
-// 5. ill-posed input
+// 4. ill-posed input
 // ---------------------------------------------------------------------------
 
 // ANCHOR: illposed
@@ -345,7 +235,7 @@ fn ill_posed(work: &Path, chapter: &mut Chapter) -> Result<usize> {
 // ANCHOR_END: illposed
 
 // ---------------------------------------------------------------------------
-// 6. large initial gaps
+// 5. large initial gaps
 // ---------------------------------------------------------------------------
 
 // ANCHOR: gaps
@@ -496,21 +386,19 @@ fn main() -> Result<()> {
     let t0 = Instant::now();
     let start = Machine::here();
 
-    eprintln!("1/8 check at the maxima");
+    eprintln!("1/7 check at the maxima");
     let slowest_maximum = maxima(&work, &mut chapter)?;
-    eprintln!("2/8 refinement");
+    eprintln!("2/7 refinement");
     refinement(&mut chapter)?;
-    eprintln!("3/8 memory");
-    let (lo, hi) = memory(&work, &mut chapter)?;
-    eprintln!("4/8 campaign");
+    eprintln!("3/7 campaign");
     let tally = campaign::run(&work);
-    eprintln!("5/8 ill-posed input");
+    eprintln!("4/7 ill-posed input");
     let refused = ill_posed(&work, &mut chapter)?;
-    eprintln!("6/8 gaps");
+    eprintln!("5/7 gaps");
     let (gap_iterations, gap_force) = gaps(&mut chapter)?;
-    eprintln!("7/8 faults");
+    eprintln!("6/7 faults");
     let faults = faults::run(&work)?;
-    eprintln!("8/8 answers off the benchmark path");
+    eprintln!("7/7 answers off the benchmark path");
     let answered = answers::report(&work, &mut chapter)?;
     let _ = std::fs::remove_dir_all(&work);
 
@@ -566,8 +454,6 @@ fn main() -> Result<()> {
     f.count("max_degree", MAX_DEGREE)?;
     f.count("max_elements", MAX_ELEMENTS)?;
     f.timed_number("slowest_check_at_maxima", slowest_maximum, Format::Fixed(2))?;
-    f.timed_number("memory_ratio_min", lo, Format::Fixed(2))?;
-    f.timed_number("memory_ratio_max", hi, Format::Fixed(2))?;
     f.count("campaign_limit_gib", (campaign::LIMIT >> 30) as usize)?;
     f.timed_number("campaign_timeout", campaign::TIMEOUT, Format::Fixed(0))?;
     f.count("campaign_shapes", SHAPES.len())?;
@@ -589,6 +475,11 @@ fn main() -> Result<()> {
     f.count("answers_launches", answered.launches)?;
     f.count("answers_silent_wrong", answered.silent_wrong)?;
     f.count("answers_unclean", answered.unclean)?;
+    f.timed_number(
+        "answers_peak_mb",
+        answered.peak_bytes / 1e6,
+        Format::Fixed(0),
+    )?;
     f.count("launches_total", tally.launches + answered.launches)?;
     f.number("answers_wrong", answers::WRONG, Format::Percent(0))?;
     f.number("answers_balance", answers::BALANCE, Format::Pow10(0))?;
