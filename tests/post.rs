@@ -31,7 +31,7 @@ fn hertz_8x8_iga_p2_beats_fem_q1_in_peak_pressure() {
 }
 
 /// The pressure L2 error against a fine reference falls under refinement,
-/// and the reference measured against itself has no error.
+/// and the reference measured against itself has no error (to round-off).
 #[test]
 fn refining_iga_p2_reduces_the_pressure_l2_error() {
     let reference = {
@@ -39,10 +39,10 @@ fn refining_iga_p2_reduces_the_pressure_l2_error() {
         let s = solve(&p, &SolverOptions::with_kind(SolverKind::Newton)).unwrap();
         let r = Reference::new(&p, &s.u, &s.full).unwrap();
         let own = r.errors(&p, &s.u, &s.full).unwrap();
-        assert_eq!(
-            (own.p0, own.half_width, own.pressure_l2, own.energy),
-            (0.0, 0.0, 0.0, 0.0)
-        );
+        // zero up to the round-off of interpolating the profile at its
+        // own sample points
+        let own = [own.p0, own.half_width, own.pressure_l2, own.energy];
+        assert!(own.iter().all(|e| *e <= 1e-15), "{own:?}");
         r
     };
     let errors: Vec<f64> = [8, 16, 32]
