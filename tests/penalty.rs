@@ -83,7 +83,8 @@ fn run_warns_below_the_bound_and_not_above() {
         "contact[0]",
         "active points",
         "smallest γ/bound 0.",
-        "set contact[0].nitsche.penalty_factor = ",
+        "which θ > 0 needs at every point",
+        "set contact[0].nitsche.",
     ] {
         assert!(w[0].contains(part), "{part:?} missing in {}", w[0]);
     }
@@ -181,7 +182,7 @@ fn the_warning_follows_the_bound() {
         report.warnings.as_slice(),
         [Warning::PenaltyBelowBound { below, active, min_ratio, .. }]
             if *below == stability.active_below && *active == stability.active
-                && *min_ratio == stability.min_active_ratio
+                && *min_ratio == stability.min_ratio()
     ));
     let needed = stability.factor_needed(1.0).unwrap();
     assert!(needed > 1.0);
@@ -203,6 +204,22 @@ fn the_warning_follows_the_bound() {
     assert_eq!(stability.active, active.len());
     assert_eq!(stability.active_below, below);
     assert_eq!(stability.min_active_ratio, Some(ratio));
+    // θ = 1 keeps −(1/γ) w σ_n σ_nᵀ at the inactive points: they need
+    // γ > C_T too (points at the singular corner are never judged)
+    let inactive: Vec<_> = problem
+        .points
+        .iter()
+        .filter(|cp| cp.p(&full) > 0.0 && cp.regular)
+        .collect();
+    let inactive_below = inactive
+        .iter()
+        .filter(|cp| cp.gamma < cp.trace_constant)
+        .count();
+    assert_eq!(stability.inactive_below, inactive_below);
+    assert!(
+        inactive_below > 0,
+        "the Hertz disk's points near its corner"
+    );
 
     // a little above the factor named: silent; a little below: warned
     for (factor, warns) in [(1.2 * needed, false), (0.8 * needed, true)] {

@@ -146,8 +146,11 @@ pub fn sharp_penalty(trace_constant: f64, theta: f64, safety: f64) -> f64 {
 ///
 /// Below the bound, the discrete problem restricted to an active set need
 /// not be coercive, so a converged solution need not be the only one: two
-/// solvers can reach different "converged" answers. Points below the bound
-/// that stay inactive do not enter the solution's tangent.
+/// solvers can reach different "converged" answers. An inactive point is
+/// not free of the penalty either when θ > 0: its term −(θ/γ) w σ_n σ_nᵀ
+/// stays in the tangent (only the bracket switches off), and a(v, v) −
+/// (θ/γ)∫σ_n(v)² ≥ a(v, v)(1 − θ C_T/γ) needs γ > θ C_T there; such points
+/// are counted apart ([`inactive_below`](Self::inactive_below)).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PenaltyStability {
     pub points: usize,
@@ -166,6 +169,10 @@ pub struct PenaltyStability {
     /// The largest γ / (θ = 0 bound) over the active points; `None` if no
     /// active point has a positive bound.
     pub max_active_scale: Option<f64>,
+    /// Inactive points with γ below θ C_T (θ > 0 only; see above).
+    pub inactive_below: usize,
+    /// The smallest γ / (θ C_T) over the inactive points, θ > 0.
+    pub min_inactive_ratio: Option<f64>,
 }
 
 impl PenaltyStability {
@@ -175,9 +182,18 @@ impl PenaltyStability {
     /// empirical and the sharp penalty alike). `None` when no active point
     /// is below the bound.
     pub fn factor_needed(&self, factor: f64) -> Option<f64> {
-        self.min_active_ratio
-            .filter(|&r| r < 1.0 && self.active_below > 0)
+        self.min_ratio()
+            .filter(|&r| r < 1.0 && self.active_below + self.inactive_below > 0)
             .map(|r| factor / r)
+    }
+
+    /// The smallest γ over the bound that applies, active and inactive
+    /// points together.
+    pub fn min_ratio(&self) -> Option<f64> {
+        match (self.min_active_ratio, self.min_inactive_ratio) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
     }
 }
 
@@ -214,6 +230,10 @@ pub fn stability_of(
                 s.active_over += usize::from(r > over);
                 s.max_active_scale = Some(s.max_active_scale.map_or(r, |m: f64| m.max(r)));
             }
+        } else if judged && cp.theta > 0.0 && cp.trace_constant > 0.0 {
+            let r = cp.gamma / (cp.theta * cp.trace_constant);
+            s.inactive_below += usize::from(r < 1.0);
+            s.min_inactive_ratio = Some(s.min_inactive_ratio.map_or(r, |m: f64| m.min(r)));
         }
     }
     out

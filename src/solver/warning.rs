@@ -92,7 +92,10 @@ pub enum Warning {
         pair: usize,
         below: usize,
         active: usize,
-        /// The smallest γ / bound over the active points.
+        /// Inactive points below θ C_T (θ > 0: their −(θ/γ) w σ_n σ_nᵀ stays
+        /// in the tangent).
+        inactive_below: usize,
+        /// The smallest γ / bound over the points counted.
         min_ratio: Option<f64>,
         counted: Counted,
         remedy: PenaltyRemedy,
@@ -202,6 +205,7 @@ impl std::fmt::Display for Warning {
                 pair,
                 below,
                 active,
+                inactive_below,
                 min_ratio,
                 counted,
                 remedy,
@@ -212,6 +216,13 @@ impl std::fmt::Display for Warning {
                     counted_words(*counted),
                     if *below == 1 { "has" } else { "have" }
                 )?;
+                if *inactive_below > 0 {
+                    write!(
+                        f,
+                        ", and {inactive_below} other {} below θ·C_T, which θ > 0 needs at every point",
+                        if *inactive_below == 1 { "point lies" } else { "points lie" }
+                    )?;
+                }
                 if let Some(r) = min_ratio {
                     write!(f, " (smallest γ/bound {r:.3})")?;
                 }
@@ -301,12 +312,13 @@ fn penalty_warnings(
     let mut out = Vec::new();
     for (k, s) in stability.iter().enumerate() {
         let pair = &pairs[k];
-        if s.active_below > 0 {
+        if s.active_below + s.inactive_below > 0 {
             out.push(Warning::PenaltyBelowBound {
                 pair: k,
                 below: s.active_below,
                 active: s.active,
-                min_ratio: s.min_active_ratio,
+                inactive_below: s.inactive_below,
+                min_ratio: s.min_ratio(),
                 counted,
                 remedy: below_remedy(pair, s),
             });
@@ -343,7 +355,7 @@ fn scaled(pair: &ContactPair, s: &PenaltyStability, scale: f64) -> PenaltyRemedy
 /// Below the bound: the smallest active point lifted to [`PENALTY_TARGET`]
 /// times its bound.
 fn below_remedy(pair: &ContactPair, s: &PenaltyStability) -> PenaltyRemedy {
-    let ratio = s.min_active_ratio.unwrap_or(1.0);
+    let ratio = s.min_ratio().unwrap_or(1.0);
     scaled(pair, s, PENALTY_TARGET / ratio)
 }
 
