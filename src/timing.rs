@@ -227,6 +227,41 @@ pub fn utc_date(t: std::time::SystemTime) -> String {
     format!("{year:04}-{month:02}-{day:02}")
 }
 
+/// The files of a finished run's output folder ([`crate::report::atomic::snapshot`])
+/// with what differs between two runs of one scene taken out: the
+/// `[timing]` table of `summary.toml`, and the byte counts of the manifest
+/// (which follow that file's length). What is left is the answer, which two
+/// runs must write byte for byte alike.
+pub fn untimed_snapshot(
+    dir: &std::path::Path,
+) -> std::io::Result<std::collections::BTreeMap<String, Vec<u8>>> {
+    use crate::report::atomic;
+    let mut files = atomic::snapshot(dir)?;
+    for (name, bytes) in files.iter_mut() {
+        let text = String::from_utf8_lossy(bytes).into_owned();
+        let kept: Vec<&str> = match name.as_str() {
+            "summary.toml" => {
+                let mut in_timing = false;
+                text.lines()
+                    .filter(|l| {
+                        if l.starts_with('[') {
+                            in_timing = l.trim() == "[timing]";
+                        }
+                        !in_timing
+                    })
+                    .collect()
+            }
+            atomic::MANIFEST => text
+                .lines()
+                .filter(|l| !l.starts_with("bytes = "))
+                .collect(),
+            _ => continue,
+        };
+        *bytes = kept.join("\n").into_bytes();
+    }
+    Ok(files)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -264,39 +299,4 @@ mod tests {
         assert_eq!(at(1_735_689_599), "2024-12-31"); // the last second of 2024
         assert_eq!(at(4_107_542_400), "2100-03-01"); // 2100 is no leap year
     }
-}
-
-/// The files of a finished run's output folder ([`crate::report::atomic::snapshot`])
-/// with what differs between two runs of one scene taken out: the
-/// `[timing]` table of `summary.toml`, and the byte counts of the manifest
-/// (which follow that file's length). What is left is the answer, which two
-/// runs must write byte for byte alike.
-pub fn untimed_snapshot(
-    dir: &std::path::Path,
-) -> std::io::Result<std::collections::BTreeMap<String, Vec<u8>>> {
-    use crate::report::atomic;
-    let mut files = atomic::snapshot(dir)?;
-    for (name, bytes) in files.iter_mut() {
-        let text = String::from_utf8_lossy(bytes).into_owned();
-        let kept: Vec<&str> = match name.as_str() {
-            "summary.toml" => {
-                let mut in_timing = false;
-                text.lines()
-                    .filter(|l| {
-                        if l.starts_with('[') {
-                            in_timing = l.trim() == "[timing]";
-                        }
-                        !in_timing
-                    })
-                    .collect()
-            }
-            atomic::MANIFEST => text
-                .lines()
-                .filter(|l| !l.starts_with("bytes = "))
-                .collect(),
-            _ => continue,
-        };
-        *bytes = kept.join("\n").into_bytes();
-    }
-    Ok(files)
 }
