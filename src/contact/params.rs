@@ -170,7 +170,9 @@ pub struct Nitsche {
 }
 
 impl Default for Nitsche {
-    /// The paper's choices: θ = 0, penalty factor 1; segment integration.
+    /// θ = 0 and penalty factor 1 (the paper's); the slave's modulus in
+    /// (11), the biased form, and segment integration (the library's: the
+    /// paper integrates contact at Gauss points, `integration = "gauss"`).
     fn default() -> Self {
         Self {
             theta: Theta::Incomplete,

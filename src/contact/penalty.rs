@@ -2,9 +2,10 @@
 //!
 //! γ is a *stiffness* here, γ = 0.1 · E · (p+1)(p+d) · (1/h₁ + 1/h₂): it grows
 //! with the modulus and shrinks with the element size, like the largest
-//! eigenvalue of the boundary trace inequality it replaces. (GetFEM and
-//! Chouly–Hild write the reciprocal, a compliance γ₀h, so "small γ" there
-//! means a large one here.)
+//! eigenvalue of the boundary trace inequality it replaces. (Chouly, Hild &
+//! Renard write the reciprocal, a compliance γ₀h with γ₀ in 1/Pa, so
+//! "small γ₀" there means a large γ here; GetFEM's Nitsche contact brick
+//! takes a stiffness γ₀ in Pa and forms γ₀/h, like this γ.)
 
 use super::pair::ContactPoint;
 use crate::error::Result;
@@ -12,7 +13,8 @@ use crate::error::Result;
 /// Inputs of Eq. (11) at one contact quadrature point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PenaltyInputs {
-    /// E = max(E¹, E²).
+    /// E of the body chosen by the pair's [`super::Modulus`] (by default
+    /// the slave's).
     pub young: f64,
     /// Spline degree p.
     pub degree: usize,
