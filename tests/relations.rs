@@ -104,7 +104,6 @@ const NOT_YET_ANNOTATED: &[&str] = &[
     "two_cylinders.md",
     "iga_vs_fem.md",
     "error_vs_time.md",
-    "solvers.md",
     "stability.md",
     "penalty_study.md",
     "scenes.md",
