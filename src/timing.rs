@@ -78,13 +78,50 @@ pub struct PhaseTimes {
 impl PhaseTimes {
     /// The sum of the phases, to compare with [`PhaseTimes::wall`].
     pub fn sum(&self) -> f64 {
-        self.parse_and_build
-            + self.contact_setup
-            + self.assembly
-            + self.factorisation
-            + self.iterations
-            + self.post_processing
-            + self.output
+        self.parts().iter().map(|(_, s)| s).sum()
+    }
+
+    /// The phases in the order they happen, each with its key in the
+    /// `[timing]` table of `summary.toml`.
+    pub fn parts(&self) -> [(&'static str, f64); 7] {
+        [
+            ("parse_and_build", self.parse_and_build),
+            ("contact_setup", self.contact_setup),
+            ("assembly", self.assembly),
+            ("factorisation", self.factorisation),
+            ("iterations", self.iterations),
+            ("post_processing", self.post_processing),
+            ("output", self.output),
+        ]
+    }
+
+    /// The times of a `[timing]` table read back (e.g. from a
+    /// `summary.toml`): `get` gives the value of a key, `None` when it is
+    /// missing, and the first missing key is returned as the error.
+    pub fn from_keys(
+        mut get: impl FnMut(&str) -> Option<f64>,
+    ) -> std::result::Result<Self, &'static str> {
+        let mut t = Self::default();
+        for (key, _) in Self::default().parts() {
+            let v = get(key).ok_or(key)?;
+            *t.slot_of(key).expect("a key of parts") = v;
+        }
+        t.wall = get("wall").ok_or("wall")?;
+        Ok(t)
+    }
+
+    fn slot_of(&mut self, key: &str) -> Option<&mut f64> {
+        Some(match key {
+            "parse_and_build" => &mut self.parse_and_build,
+            "contact_setup" => &mut self.contact_setup,
+            "assembly" => &mut self.assembly,
+            "factorisation" => &mut self.factorisation,
+            "iterations" => &mut self.iterations,
+            "post_processing" => &mut self.post_processing,
+            "output" => &mut self.output,
+            "wall" => &mut self.wall,
+            _ => return None,
+        })
     }
 
     fn slot(&mut self, phase: Phase) -> &mut f64 {
@@ -288,6 +325,29 @@ mod tests {
         // statements; the margin is for a descheduled thread)
         assert!(t.sum() <= t.wall && t.wall - t.sum() < 0.1, "{t:?}");
         assert!(t.sum() >= 0.035, "{t:?}");
+    }
+
+    /// The keys of `parts` are the fields serialised into `[timing]`,
+    /// and reading them back gives the same times.
+    #[test]
+    fn timing_keys_round_trip() {
+        let t = PhaseTimes {
+            parse_and_build: 1.0,
+            contact_setup: 2.0,
+            assembly: 3.0,
+            factorisation: 4.0,
+            iterations: 5.0,
+            post_processing: 6.0,
+            output: 7.0,
+            wall: 28.5,
+        };
+        let table: toml::Table = toml::from_str(&toml::to_string(&t).unwrap()).unwrap();
+        let back = PhaseTimes::from_keys(|k| table.get(k)?.as_float()).unwrap();
+        assert_eq!(back, t);
+        assert_eq!(t.sum(), 28.0);
+        assert_eq!(table.len(), t.parts().len() + 1);
+        let missing = PhaseTimes::from_keys(|k| (k != "output").then_some(1.0));
+        assert_eq!(missing, Err("output"));
     }
 
     #[test]
