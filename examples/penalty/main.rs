@@ -205,6 +205,43 @@ fn main() -> Result<()> {
         for (p, r) in DEGREES.iter().zip(mine) {
             f.number(&format!("{key}_first_p{p}"), r, Format::Fixed(2))?;
         }
+        // The growth of C_T with p, in units of E(1/h₁ + 1/h₂), which do not
+        // change with p on these meshes: c(p) = 0.1 (p+1)(p+d) / ratio. Its
+        // spread once divided by p², against its growth once divided by
+        // (p+1)², tells which of the two is the order of C_T; the limit of
+        // the ratio for large p is then 0.1 / (c/p²) at the top degree.
+        let c: Vec<f64> = DEGREES
+            .iter()
+            .zip(mine)
+            .map(|(&p, r)| 0.1 * ((p + 1) * (p + 2)) as f64 / r)
+            .collect();
+        let per = |k: fn(f64) -> f64| -> Vec<f64> {
+            DEGREES
+                .iter()
+                .zip(&c)
+                .map(|(&p, c)| c / k(p as f64))
+                .collect()
+        };
+        let by_p2 = per(|p| p * p);
+        let by_pp1 = per(|p| (p + 1.0) * (p + 1.0));
+        let (lo2, hi2) = by_p2
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
+        f.number(
+            &format!("{key}_ct_p2_spread"),
+            (hi2 - lo2) / lo2,
+            Format::Percent(1),
+        )?;
+        f.number(
+            &format!("{key}_ct_pp1_growth"),
+            by_pp1[by_pp1.len() - 1] / by_pp1[0],
+            Format::Fixed(1),
+        )?;
+        f.number(
+            &format!("{key}_first_limit"),
+            0.1 / by_p2[by_p2.len() - 1],
+            Format::Fixed(2),
+        )?;
     }
     let spread = |is: usize| {
         DEGREES
