@@ -291,6 +291,7 @@ impl Row {
                 Warning::PenaltyFarAboveBound { over, active, .. } => {
                     format!("γ > {OVER_PENALTY} × bound at {over}/{active}")
                 }
+                Warning::PenaltyLoose { .. } => "loose penalty (θ = −1)".to_string(),
                 Warning::StifferSlave { .. } => "stiffer slave".to_string(),
                 Warning::NearlyIncompressible { .. } => "locking".to_string(),
                 Warning::ZoneAtSideEnd { .. } => "zone at side end".to_string(),

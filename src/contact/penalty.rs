@@ -171,6 +171,9 @@ pub struct PenaltyStability {
     /// The largest γ / (θ = 0 bound) over the active points; `None` if no
     /// active point has a positive bound.
     pub max_active_scale: Option<f64>,
+    /// The smallest γ / (θ = 0 bound) over the active points: how loosely
+    /// the gap is held where θ = −1 has no bound to fall below.
+    pub min_active_scale: Option<f64>,
     /// Inactive points with γ below θ C_T (θ > 0 only; see above).
     pub inactive_below: usize,
     /// The smallest γ / (θ C_T) over the inactive points, θ > 0.
@@ -231,6 +234,7 @@ pub fn stability_of(
                 let r = cp.gamma / scale;
                 s.active_over += usize::from(r > over);
                 s.max_active_scale = Some(s.max_active_scale.map_or(r, |m: f64| m.max(r)));
+                s.min_active_scale = Some(s.min_active_scale.map_or(r, |m: f64| m.min(r)));
             }
         } else if judged && cp.theta > 0.0 && cp.trace_constant > 0.0 {
             let r = cp.gamma / (cp.theta * cp.trace_constant);
