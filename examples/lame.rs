@@ -307,7 +307,7 @@ pub fn plot(rows: &[Row], path: &std::path::Path) -> Result<()> {
             .colored(BLACK_INDEX),
     );
     series.push(
-        Series::line("optimal rate (L²: p + 1, energy: p)", vec![])
+        Series::line("optimal slope in N (L²: −(p+1)/2, energy: −p/2)", vec![])
             .dotted()
             .colored(BLACK_INDEX),
     );
