@@ -32,7 +32,8 @@ pub struct ContactPair {
 }
 
 impl ContactPair {
-    /// A pair with the default [`Nitsche`] parameters (the paper's).
+    /// A pair with the default [`Nitsche`] parameters (the paper's θ and
+    /// penalty, with segment integration, which is the library's).
     pub fn new(slave: usize, slave_side: Side, master: Master) -> Self {
         Self {
             slave,
@@ -65,7 +66,7 @@ pub struct ContactPoint {
     pub t: f64,
     /// n¹ = −n²(x̄²).
     pub normal: [f64; 2],
-    /// Initial gap g₀ = (X̄² − X¹)·n¹.
+    /// Initial gap g₀ = (x̄² − x¹)·n¹, between positions in the undeformed bodies.
     pub g0: f64,
     pub gamma: f64,
     /// The trace-inverse constant C_T of the slave element that holds the
@@ -81,7 +82,9 @@ pub struct ContactPoint {
     /// master) those of the master control points whose basis functions are
     /// non-zero at x̄². `sn` and `jn` are indexed like this list.
     pub dofs: Vec<usize>,
-    /// The normal stress σ_n(u) = n¹·σ(u¹)n¹ at x¹ as a linear functional:
+    /// The normal stress σ_n(u) = n¹·σ(u¹)n¹ at x¹ in the contact direction n¹
+    /// (the slave's own normal only on mirrored points or where the surfaces
+    /// are parallel), as a linear functional:
     /// σ_n(u) = Σ_k `sn[k] u[dofs[k]]`. It uses the slave's basis gradients and
     /// material only, so its entries on master DOFs are zero.
     pub sn: Vec<f64>,

@@ -85,7 +85,7 @@ impl<'de> Deserialize<'de> for Theta {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Integration {
-    /// Gauss points per slave element: simple, but the integrand has kinks
+    /// Gauss points per slave element, the paper's rule: simple, but the integrand has kinks
     /// where master knots project, so it is not integrated exactly.
     Gauss,
     /// Each slave element is cut where master knots project; the integrand
