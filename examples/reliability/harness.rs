@@ -1,3 +1,5 @@
+#![allow(dead_code)] // shared by the reliability and answers programs, each using part
+
 //! Running the `iga-contact` binary as a child process under resource
 //! limits, with its exit status, peak memory and messages; and the scenes
 //! the campaign feeds it.
@@ -258,3 +260,24 @@ pub fn mesh(elements: [usize; 2]) -> String {
 pub const ALL_OUTPUTS: &str =
     "[output]\niterations = true\npressure_profile = true\nsummary = true\n\
                                figures = true\nvtu = true\n";
+
+/// The commit measured, `+` marking uncommitted changes.
+pub fn commit() -> String {
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    match (
+        git(&["rev-parse", "--short", "HEAD"]),
+        git(&["status", "--porcelain", "--untracked-files=no"]),
+    ) {
+        (Some(h), Some(s)) if s.is_empty() => h,
+        (Some(h), Some(_)) => format!("{h}+"),
+        _ => "unknown".into(),
+    }
+}

@@ -19,12 +19,11 @@
 //! minutes and up to 6 GB on two cores): `iga-contact reproduce --all`, or
 //! `cargo build --release && cargo run --release --example reliability`.
 
-mod answers;
 mod campaign;
 mod faults;
 mod harness;
 
-use harness::{body_scene, launch, mesh, refine, Launch, SHAPES};
+use harness::{body_scene, commit, launch, mesh, refine, Launch, SHAPES};
 use iga_contact::post::contact_resultant;
 use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
@@ -356,27 +355,6 @@ fn fuzz_counts() -> (u32, usize) {
     (total, groups)
 }
 
-/// The commit measured, `+` marking uncommitted changes.
-fn commit() -> String {
-    let git = |args: &[&str]| {
-        std::process::Command::new("git")
-            .args(args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-    };
-    match (
-        git(&["rev-parse", "--short", "HEAD"]),
-        git(&["status", "--porcelain", "--untracked-files=no"]),
-    ) {
-        (Some(h), Some(s)) if s.is_empty() => h,
-        (Some(h), Some(_)) => format!("{h}+"),
-        _ => "unknown".into(),
-    }
-}
-
 fn main() -> Result<()> {
     // fail fast: the chapter folder must take the report before the work
     let mut chapter = Chapter::from_args("reliability")?;
@@ -386,20 +364,18 @@ fn main() -> Result<()> {
     let t0 = Instant::now();
     let start = Machine::here();
 
-    eprintln!("1/7 check at the maxima");
+    eprintln!("1/6 check at the maxima");
     let slowest_maximum = maxima(&work, &mut chapter)?;
-    eprintln!("2/7 refinement");
+    eprintln!("2/6 refinement");
     refinement(&mut chapter)?;
-    eprintln!("3/7 campaign");
+    eprintln!("3/6 campaign");
     let tally = campaign::run(&work);
-    eprintln!("4/7 ill-posed input");
+    eprintln!("4/6 ill-posed input");
     let refused = ill_posed(&work, &mut chapter)?;
-    eprintln!("5/7 gaps");
+    eprintln!("5/6 gaps");
     let (gap_iterations, gap_force) = gaps(&mut chapter)?;
-    eprintln!("6/7 faults");
+    eprintln!("6/6 faults");
     let faults = faults::run(&work)?;
-    eprintln!("7/7 answers off the benchmark path");
-    let answered = answers::report(&work, &mut chapter)?;
     let _ = std::fs::remove_dir_all(&work);
 
     // the campaign's outcomes and the lists behind them
@@ -470,36 +446,6 @@ fn main() -> Result<()> {
         "campaign_slowest_check",
         tally.slowest_check,
         Format::Fixed(2),
-    )?;
-    f.count("answers_cases", answered.cases)?;
-    f.count("answers_launches", answered.launches)?;
-    f.count("answers_silent_wrong", answered.silent_wrong)?;
-    f.count("answers_unclean", answered.unclean)?;
-    f.timed_number(
-        "answers_peak_mb",
-        answered.peak_bytes / 1e6,
-        Format::Fixed(0),
-    )?;
-    f.count("launches_total", tally.launches + answered.launches)?;
-    f.number("answers_wrong", answers::WRONG, Format::Percent(0))?;
-    f.number("answers_balance", answers::BALANCE, Format::Pow10(0))?;
-    f.number(
-        "scale_spread",
-        answered.scale_spread.max(1e-16),
-        Format::Pow10(0),
-    )?;
-    f.text(
-        "scale_same_iterations",
-        if answered.scale_same_iterations {
-            "yes"
-        } else {
-            "no"
-        },
-    )?;
-    f.number(
-        "prescribed_error",
-        answered.prescribed_error.max(1e-16),
-        Format::Pow10(0),
     )?;
     f.count("ill_posed_refused", refused)?;
     f.count("gap_max_iterations", gap_iterations)?;

@@ -102,6 +102,7 @@ pub const PROGRAMS: &[Program] = &[
     program("claims", "claims", Cost::Quick),
     program("scenes", "scenes", Cost::Quick),
     program("reliability", "reliability", Cost::Heavy),
+    program("answers", "answers", Cost::Heavy),
     program("memory_table", "memory_table", Cost::Heavy),
 ];
 

@@ -8,6 +8,11 @@
 //! must carry a warning.
 
 use crate::harness::{launch, Launch, Outcome};
+
+/// The address-space limit of every launch, as in the reliability campaign.
+pub const LIMIT: u64 = 8 << 30;
+/// Seconds a launch may take before it is stopped.
+pub const TIMEOUT: f64 = 30.0;
 use iga_contact::material::{Material, Plane};
 use iga_contact::post::hertz::{Cylinder, Hertz};
 use iga_contact::post::PressureProfile;
@@ -530,8 +535,8 @@ pub struct Answer {
 /// answers and the number of launches.
 pub fn run(work: &Path) -> Result<(Vec<Answer>, usize)> {
     let how = Launch {
-        address_space: Some(crate::campaign::LIMIT),
-        timeout: crate::campaign::TIMEOUT,
+        address_space: Some(LIMIT),
+        timeout: TIMEOUT,
         ..Launch::default()
     };
     let mut answers = Vec::new();

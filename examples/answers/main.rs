@@ -1,0 +1,83 @@
+//! Answers off the benchmark path: the program behind the section of that
+//! name in the chapter "Reliability".
+//!
+//! It writes scenes a user might write once off the shipped benchmarks —
+//! bodies held only by supports and pressed by a prescribed displacement,
+//! Hertz in other units, either body of a pair as the slave, ν up to
+//! 0.49999, penalties over eighteen decades, large loads, one element to
+//! 64² — gives each to `check` and `run` of this build's `iga-contact` as a
+//! child process, and judges every answer against a closed form or a
+//! converged run (`answers.rs`).
+//!
+//! Output: `book/src/generated/answers/`. A heavy program (about 2 minutes
+//! on an idle two-core machine): `iga-contact reproduce --only answers`.
+
+#[path = "../reliability/harness.rs"]
+mod harness;
+
+mod answers;
+
+use iga_contact::report::chapter::Chapter;
+use iga_contact::report::table::Format;
+use iga_contact::timing::Machine;
+use iga_contact::Result;
+use std::time::Instant;
+
+fn main() -> Result<()> {
+    // fail fast: the chapter folder must take the report before the work
+    let mut chapter = Chapter::from_args("answers")?;
+    harness::binary();
+    let work = std::env::temp_dir().join(format!("answers-{}", std::process::id()));
+    std::fs::create_dir_all(&work).expect("a temporary work folder");
+    let t0 = Instant::now();
+    let start = Machine::here();
+    let answered = answers::report(&work, &mut chapter)?;
+    let _ = std::fs::remove_dir_all(&work);
+
+    let end = Machine::here();
+    let f = chapter.facts();
+    start.record(f, "")?;
+    f.timed_text(
+        "load_end",
+        end.load.map_or("unknown".into(), |l| format!("{l:.1}")),
+    )?;
+    f.timed_text("commit", harness::commit())?;
+    f.timed_number(
+        "minutes",
+        t0.elapsed().as_secs_f64() / 60.0,
+        Format::Fixed(1),
+    )?;
+    f.count("answers_cases", answered.cases)?;
+    f.count("answers_launches", answered.launches)?;
+    f.count("answers_silent_wrong", answered.silent_wrong)?;
+    f.count("answers_unclean", answered.unclean)?;
+    f.timed_number(
+        "answers_peak_mb",
+        answered.peak_bytes / 1e6,
+        Format::Fixed(0),
+    )?;
+    f.number("answers_wrong", answers::WRONG, Format::Percent(0))?;
+    f.number("answers_balance", answers::BALANCE, Format::Pow10(0))?;
+    f.number(
+        "scale_spread",
+        answered.scale_spread.max(1e-16),
+        Format::Pow10(0),
+    )?;
+    f.text(
+        "scale_same_iterations",
+        if answered.scale_same_iterations {
+            "yes"
+        } else {
+            "no"
+        },
+    )?;
+    f.number(
+        "prescribed_error",
+        answered.prescribed_error.max(1e-16),
+        Format::Pow10(0),
+    )?;
+    let dir = chapter.dir().display().to_string();
+    chapter.finish()?;
+    println!("wrote {dir}/ in {:.0} s", t0.elapsed().as_secs_f64());
+    Ok(())
+}
