@@ -12,6 +12,7 @@
 //! Output: `book/src/generated/answers/`. A heavy program (about 2 minutes
 //! on an idle two-core machine): `iga-contact reproduce --only answers`.
 
+#[allow(dead_code)] // shared with the reliability program, each using part
 #[path = "../reliability/harness.rs"]
 mod harness;
 

@@ -1,5 +1,3 @@
-#![allow(dead_code)] // shared by the reliability and answers programs, each using part
-
 //! Running the `iga-contact` binary as a child process under resource
 //! limits, with its exit status, peak memory and messages; and the scenes
 //! the campaign feeds it.

@@ -21,6 +21,7 @@
 
 mod campaign;
 mod faults;
+#[allow(dead_code)] // shared with the answers and memory_table programs, each using part
 mod harness;
 
 use harness::{body_scene, commit, launch, mesh, refine, Launch, SHAPES};
