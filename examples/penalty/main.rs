@@ -83,6 +83,17 @@ fn first_touch(problem: &Problem) -> &ContactPoint {
         .expect("every set-up has contact points")
 }
 
+/// The point of smallest ratio over the regular points of the contact side
+/// (the map is regular there; see `ContactPoint::regular`).
+fn smallest_regular(problem: &Problem) -> &ContactPoint {
+    problem
+        .points
+        .iter()
+        .filter(|cp| cp.regular)
+        .min_by(|a, b| ratio(a).total_cmp(&ratio(b)))
+        .expect("every set-up has regular contact points")
+}
+
 /// The point of smallest ratio on the whole contact side.
 fn smallest(problem: &Problem) -> &ContactPoint {
     problem
@@ -115,6 +126,8 @@ fn main() -> Result<()> {
     // [set-up][mesh][degree] → ratio at first touch
     let mut first = [[[0.0; 5]; 2]; 4];
     let mut corner = Vec::new(); // Hertz 16²: (first-touch point, smallest point) per degree
+    let mut regular_min = f64::INFINITY; // Hertz 16²: smallest ratio over the regular points
+    let mut singular_points = 0; // Hertz 16², p = 2: points where the map is singular
     for (ip, p) in DEGREES.into_iter().enumerate() {
         for (im, n) in MESHES.into_iter().enumerate() {
             for (is, problem) in setups(p, n)?.iter().enumerate() {
@@ -129,6 +142,10 @@ fn main() -> Result<()> {
                 ])?;
                 if is == 0 && n == 16 {
                     corner.push((f.clone(), s.clone()));
+                    regular_min = regular_min.min(ratio(smallest_regular(problem)));
+                    if p == 2 {
+                        singular_points = problem.points.iter().filter(|cp| !cp.regular).count();
+                    }
                 }
             }
         }
@@ -238,6 +255,20 @@ fn main() -> Result<()> {
         .map(|(_, s)| ratio(s))
         .fold(f64::INFINITY, f64::min);
     f.number("corner_ratio_min", worst, Format::Pow10(0))?;
+    // away from the singular corner: the smallest ratio over the regular
+    // points of the Hertz side (16², every degree), in units of the bound of
+    // θ = 1 and of θ = 0
+    f.number("hertz_regular_min", regular_min, Format::Fixed(2))?;
+    f.number(
+        "hertz_regular_min_theta0",
+        4.0 * regular_min,
+        Format::Fixed(2),
+    )?;
+    f.number(
+        "hertz_singular_points",
+        singular_points as f64,
+        Format::Fixed(0),
+    )?;
     // ANCHOR_END: corner
 
     // ---------------------------------------------------------------
@@ -257,6 +288,7 @@ fn main() -> Result<()> {
             Format::SignedPercent(2),
         ),
         Column::plain("below", "below"),
+        Column::plain("inactive_below", "inactive below"),
     ]);
     let choices = [
         ("(11)", Penalty::Empirical, 1.0),
@@ -264,6 +296,9 @@ fn main() -> Result<()> {
         ("sharp ×2", Penalty::Sharp, 2.0),
     ];
     let mut theta_spread = [[0.0f64; 3]; 2]; // [mesh][choice]: spread of p₀ over θ
+                                             // θ = 1 with (11), per mesh: (active points below C_T, regular inactive
+                                             // points below θ·C_T)
+    let mut theta1_empirical = [(0usize, 0usize); 2];
     for (im, n) in [16usize, 32].into_iter().enumerate() {
         let paper = measure(&hertz(n, |_| ())?, &SolverOptions::default())?
             .expect("the paper's setting converges")
@@ -280,17 +315,21 @@ fn main() -> Result<()> {
                 // θ = −1 has no bound: the column shows γ over the bound of θ = 0
                 let bound = stability_bound(cp.trace_constant, theta.value().max(0.0));
                 let o = measure(&problem, &SolverOptions::default())?;
-                let (its, p0, below): (Cell, Cell, Cell) = match &o {
+                let (its, p0, below, inactive): (Cell, Cell, Cell, Cell) = match &o {
                     Ok(o) => {
                         p0s.push(o.p0);
                         let st = penalty_stability(&problem, &o.solution.full)[0];
+                        if theta == Theta::Symmetric && ic == 0 {
+                            theta1_empirical[im] = (st.active_below, st.inactive_below);
+                        }
                         (
                             o.solution.history.len().into(),
                             relative(o.p0, paper).into(),
                             st.active_below.into(),
+                            st.inactive_below.into(),
                         )
                     }
-                    Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty),
+                    Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty, Cell::Empty),
                 };
                 sharp.push(vec![
                     n.into(),
@@ -300,6 +339,7 @@ fn main() -> Result<()> {
                     its,
                     p0,
                     below,
+                    inactive,
                 ])?;
             }
             let lo = p0s.iter().copied().fold(f64::INFINITY, f64::min);
@@ -329,6 +369,19 @@ fn main() -> Result<()> {
         theta_spread[1][2],
         Format::Percent(1),
     )?;
+    for (im, n) in [16usize, 32].into_iter().enumerate() {
+        let (active, inactive) = theta1_empirical[im];
+        f.number(
+            &format!("theta1_active_below_{n}"),
+            active as f64,
+            Format::Fixed(0),
+        )?;
+        f.number(
+            &format!("theta1_inactive_below_{n}"),
+            inactive as f64,
+            Format::Fixed(0),
+        )?;
+    }
     // ANCHOR_END: sharp
 
     // ---------------------------------------------------------------
@@ -353,6 +406,7 @@ fn main() -> Result<()> {
         Column::new("p0_paper", "paper's", Unit::None, Format::SignedPercent(1)),
         Column::plain("zones", "zones"),
         Column::new("overlap", "overlap", Unit::Millimetre, Format::Fixed(3)),
+        Column::plain("inactive_below", "inactive below"),
     ]);
     let mut unique_from = [f64::INFINITY; 3];
     for (it, theta) in Theta::ALL.into_iter().enumerate() {
@@ -366,10 +420,11 @@ fn main() -> Result<()> {
                 .iter()
                 .map(|(_, o)| measure(&problem, o))
                 .collect::<Result<_>>()?;
-            // the smallest γ/bound over the active points, and the largest
-            // overlap −g_n, of the first solver that converged
+            // the smallest γ/bound over the active points, the largest
+            // overlap −g_n, and the regular inactive points below θ·C_T
+            // (θ > 0), of the first solver that converged
             let first_ok = outcomes.iter().find_map(|o| o.as_ref().ok());
-            let (r, overlap) = match first_ok {
+            let (r, overlap, inactive) = match first_ok {
                 Some(o) => {
                     let st = penalty_stability(&problem, &o.solution.full)[0];
                     let overlap = problem
@@ -382,9 +437,10 @@ fn main() -> Result<()> {
                             .map(Cell::from)
                             .unwrap_or_else(|| "none".into()),
                         Cell::from(overlap),
+                        Cell::from(st.inactive_below),
                     )
                 }
-                None => (Cell::Empty, Cell::Empty),
+                None => (Cell::Empty, Cell::Empty, Cell::Empty),
             };
             row.push(r);
             for o in &outcomes {
@@ -399,6 +455,7 @@ fn main() -> Result<()> {
                 .collect();
             row.push(zones.join(" / ").into());
             row.push(overlap);
+            row.push(inactive);
             small.push(row)?;
             // the solvers that converge agree (at least two, the same p₀ to
             // 10⁻⁶); a solver that fails is shown in the table
