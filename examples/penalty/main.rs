@@ -83,6 +83,17 @@ fn first_touch(problem: &Problem) -> &ContactPoint {
         .expect("every set-up has contact points")
 }
 
+/// The point of smallest ratio over the regular points of the contact side
+/// (the map is regular there; see `ContactPoint::regular`).
+fn smallest_regular(problem: &Problem) -> &ContactPoint {
+    problem
+        .points
+        .iter()
+        .filter(|cp| cp.regular)
+        .min_by(|a, b| ratio(a).total_cmp(&ratio(b)))
+        .expect("every set-up has regular contact points")
+}
+
 /// The point of smallest ratio on the whole contact side.
 fn smallest(problem: &Problem) -> &ContactPoint {
     problem
@@ -115,6 +126,8 @@ fn main() -> Result<()> {
     // [set-up][mesh][degree] → ratio at first touch
     let mut first = [[[0.0; 5]; 2]; 4];
     let mut corner = Vec::new(); // Hertz 16²: (first-touch point, smallest point) per degree
+    let mut regular_min = f64::INFINITY; // Hertz 16²: smallest ratio over the regular points
+    let mut singular_points = 0; // Hertz 16², p = 2: points where the map is singular
     for (ip, p) in DEGREES.into_iter().enumerate() {
         for (im, n) in MESHES.into_iter().enumerate() {
             for (is, problem) in setups(p, n)?.iter().enumerate() {
@@ -129,6 +142,10 @@ fn main() -> Result<()> {
                 ])?;
                 if is == 0 && n == 16 {
                     corner.push((f.clone(), s.clone()));
+                    regular_min = regular_min.min(ratio(smallest_regular(problem)));
+                    if p == 2 {
+                        singular_points = problem.points.iter().filter(|cp| !cp.regular).count();
+                    }
                 }
             }
         }
@@ -275,6 +292,20 @@ fn main() -> Result<()> {
         .map(|(_, s)| ratio(s))
         .fold(f64::INFINITY, f64::min);
     f.number("corner_ratio_min", worst, Format::Pow10(0))?;
+    // away from the singular corner: the smallest ratio over the regular
+    // points of the Hertz side (16², every degree), in units of the bound of
+    // θ = 1 and of θ = 0
+    f.number("hertz_regular_min", regular_min, Format::Fixed(2))?;
+    f.number(
+        "hertz_regular_min_theta0",
+        4.0 * regular_min,
+        Format::Fixed(2),
+    )?;
+    f.number(
+        "hertz_singular_points",
+        singular_points as f64,
+        Format::Fixed(0),
+    )?;
     // ANCHOR_END: corner
 
     // ---------------------------------------------------------------
@@ -294,6 +325,7 @@ fn main() -> Result<()> {
             Format::SignedPercent(2),
         ),
         Column::plain("below", "below"),
+        Column::plain("inactive_below", "inactive below"),
     ]);
     let choices = [
         ("(11)", Penalty::Empirical, 1.0),
@@ -301,6 +333,9 @@ fn main() -> Result<()> {
         ("sharp ×2", Penalty::Sharp, 2.0),
     ];
     let mut theta_spread = [[0.0f64; 3]; 2]; // [mesh][choice]: spread of p₀ over θ
+                                             // θ = 1 with (11), per mesh: (active points below C_T, regular inactive
+                                             // points below θ·C_T)
+    let mut theta1_empirical = [(0usize, 0usize); 2];
     for (im, n) in [16usize, 32].into_iter().enumerate() {
         let paper = measure(&hertz(n, |_| ())?, &SolverOptions::default())?
             .expect("the paper's setting converges")
@@ -317,17 +352,21 @@ fn main() -> Result<()> {
                 // θ = −1 has no bound: the column shows γ over the bound of θ = 0
                 let bound = stability_bound(cp.trace_constant, theta.value().max(0.0));
                 let o = measure(&problem, &SolverOptions::default())?;
-                let (its, p0, below): (Cell, Cell, Cell) = match &o {
+                let (its, p0, below, inactive): (Cell, Cell, Cell, Cell) = match &o {
                     Ok(o) => {
                         p0s.push(o.p0);
                         let st = penalty_stability(&problem, &o.solution.full)[0];
+                        if theta == Theta::Symmetric && ic == 0 {
+                            theta1_empirical[im] = (st.active_below, st.inactive_below);
+                        }
                         (
                             o.solution.history.len().into(),
                             relative(o.p0, paper).into(),
                             st.active_below.into(),
+                            st.inactive_below.into(),
                         )
                     }
-                    Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty),
+                    Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty, Cell::Empty),
                 };
                 sharp.push(vec![
                     n.into(),
@@ -337,6 +376,7 @@ fn main() -> Result<()> {
                     its,
                     p0,
                     below,
+                    inactive,
                 ])?;
             }
             let lo = p0s.iter().copied().fold(f64::INFINITY, f64::min);
@@ -366,6 +406,19 @@ fn main() -> Result<()> {
         theta_spread[1][2],
         Format::Percent(1),
     )?;
+    for (im, n) in [16usize, 32].into_iter().enumerate() {
+        let (active, inactive) = theta1_empirical[im];
+        f.number(
+            &format!("theta1_active_below_{n}"),
+            active as f64,
+            Format::Fixed(0),
+        )?;
+        f.number(
+            &format!("theta1_inactive_below_{n}"),
+            inactive as f64,
+            Format::Fixed(0),
+        )?;
+    }
     // ANCHOR_END: sharp
 
     // ---------------------------------------------------------------
@@ -391,6 +444,9 @@ fn main() -> Result<()> {
         Column::plain("zones", "zones"),
         Column::new("overlap", "overlap", Unit::Millimetre, Format::Fixed(3)),
     ]);
+    // θ = 1: the fewest regular inactive points below θ·C_T over the
+    // converged rows (a fact, not a column: the table is at the page's width)
+    let mut theta1_inactive = usize::MAX;
     let mut unique_from = [f64::INFINITY; 3];
     for (it, theta) in Theta::ALL.into_iter().enumerate() {
         for factor in FACTORS {
@@ -403,7 +459,7 @@ fn main() -> Result<()> {
                 .iter()
                 .map(|(_, o)| measure(&problem, o))
                 .collect::<Result<_>>()?;
-            // the smallest γ/bound over the active points, and the largest
+            // the smallest γ/bound over the active points and the largest
             // overlap −g_n, of the first solver that converged
             let first_ok = outcomes.iter().find_map(|o| o.as_ref().ok());
             let (r, overlap) = match first_ok {
@@ -414,6 +470,9 @@ fn main() -> Result<()> {
                         .iter()
                         .map(|cp| cp.normal_stress_and_jump(&o.solution.full).1 - cp.g0)
                         .fold(f64::NEG_INFINITY, f64::max);
+                    if theta == Theta::Symmetric {
+                        theta1_inactive = theta1_inactive.min(st.inactive_below);
+                    }
                     (
                         st.min_active_ratio
                             .map(Cell::from)
@@ -453,6 +512,11 @@ fn main() -> Result<()> {
     }
     chapter.table("small_penalty", &small)?;
     let f = chapter.facts();
+    f.number(
+        "theta1_small_inactive_below_min",
+        theta1_inactive as f64,
+        Format::Fixed(0),
+    )?;
     for (it, key) in ["theta1", "theta0", "theta_minus1"].iter().enumerate() {
         match unique_from[it] {
             v if v.is_finite() => f.number(&format!("{key}_agree_from"), v, Format::Pow10(0))?,
