@@ -3,9 +3,10 @@
 
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::{Formulation, Plane};
 use crate::nurbs::Side;
 use crate::quadrature;
-use crate::space::Shape;
+use crate::space::{Element, Shape};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -90,9 +91,252 @@ pub fn btdb(ga: [f64; 2], gb: [f64; 2], d: &[[f64; 3]; 3]) -> [[f64; 2]; 2] {
     ]
 }
 
-/// Element stiffness ∫ Bᵀ D B dΩ in local order (control point major).
+/// Element stiffness in local order (control point major): ∫ Bᵀ D B dΩ
+/// for the displacement formulation, ∫ Bᵀ D_dev B dΩ + κ Gᵀ M⁻¹ G for the
+/// mixed one ([`ElementStress`]).
 pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
     Ok(element_integrals(body, e, None)?.0)
+}
+
+/// The pressure basis of the mixed formulation on element `el` at (ξ, η):
+/// tensor products of Legendre polynomials of degree 0..p − 1 in each
+/// parametric direction, on the element's own parameter range. Legendre
+/// rather than monomials keep the element mass matrix M well conditioned
+/// (diagonal on affine elements).
+pub fn pressure_basis(body: &Body, el: &Element, xi: f64, eta: f64) -> Vec<f64> {
+    let deg = body.space.patch.degree();
+    let along = |d: usize, t: f64| -> Vec<f64> {
+        let [a, b] = el.range[d];
+        let s = 2.0 * (t - a) / (b - a) - 1.0;
+        let n = deg[d].max(1);
+        let mut out = Vec::with_capacity(n);
+        // Bonnet's recursion
+        let (mut p0, mut p1) = (1.0, s);
+        for k in 0..n {
+            match k {
+                0 => out.push(1.0),
+                1 => out.push(s),
+                _ => {
+                    let kf = k as f64;
+                    let p2 = ((2.0 * kf - 1.0) * s * p1 - (kf - 1.0) * p0) / kf;
+                    out.push(p2);
+                    (p0, p1) = (p1, p2);
+                }
+            }
+        }
+        out
+    };
+    let (bx, by) = (along(0, xi), along(1, eta));
+    by.iter()
+        .flat_map(|&y| bx.iter().map(move |&x| x * y))
+        .collect()
+}
+
+/// The stress of one element as linear functionals of its DOFs (local
+/// order), for either formulation. For the mixed one it holds the element's
+/// projection P = M⁻¹ G of the dilatation, M = ∫ N_p N_pᵀ and G = ∫ N_p div,
+/// so that θ̄(ξ, η) = N_p(ξ, η)ᵀ P u_e; build it once per element and
+/// evaluate it at many points.
+#[derive(Clone, Debug)]
+pub struct ElementStress<'a> {
+    body: &'a Body,
+    element: usize,
+    projection: Option<DMatrix<f64>>,
+}
+
+impl<'a> ElementStress<'a> {
+    pub fn new(body: &'a Body, element: usize) -> Result<Self> {
+        let projection = match body.formulation {
+            Formulation::Displacement => None,
+            Formulation::Mixed => {
+                check_mixed(body)?;
+                let (m, g) = pressure_mass_and_divergence(body, element)?;
+                Some(projection_of(&m, &g, body, element)?)
+            }
+        };
+        Ok(Self {
+            body,
+            element,
+            projection,
+        })
+    }
+
+    /// The rows of σ_xx, σ_yy, σ_xy and σ_zz over the element's 2n DOFs at
+    /// (ξ, η), with `shape` the shape functions there.
+    pub fn rows(&self, shape: &Shape, xi: f64, eta: f64) -> [Vec<f64>; 4] {
+        let n = shape.grad.len();
+        let m = &self.body.material;
+        let mut rows: [Vec<f64>; 4] = std::array::from_fn(|_| vec![0.0; 2 * n]);
+        match &self.projection {
+            None => {
+                let d = m.d_matrix();
+                for (a, g) in shape.grad.iter().enumerate() {
+                    rows[0][2 * a] = d[0][0] * g[0];
+                    rows[0][2 * a + 1] = d[0][1] * g[1];
+                    rows[1][2 * a] = d[1][0] * g[0];
+                    rows[1][2 * a + 1] = d[1][1] * g[1];
+                    rows[2][2 * a] = d[2][2] * g[1];
+                    rows[2][2 * a + 1] = d[2][2] * g[0];
+                    if m.plane == Plane::Strain {
+                        for c in 0..2 {
+                            rows[3][2 * a + c] =
+                                m.poisson * (rows[0][2 * a + c] + rows[1][2 * a + c]);
+                        }
+                    }
+                }
+            }
+            Some(proj) => {
+                let el = &self.body.space.elements[self.element];
+                let np = pressure_basis(self.body, el, xi, eta);
+                let theta = DMatrix::from_row_slice(1, np.len(), &np) * proj;
+                let (mu, kappa) = (m.shear_modulus(), m.bulk_modulus());
+                for (a, g) in shape.grad.iter().enumerate() {
+                    for c in 0..2 {
+                        // p = κ θ̄ − (2μ/3) tr ε: the mean stress with ε_zz = 0
+                        let p = kappa * theta[2 * a + c] - 2.0 * mu / 3.0 * g[c];
+                        rows[0][2 * a + c] = p;
+                        rows[1][2 * a + c] = p;
+                        rows[3][2 * a + c] = p;
+                    }
+                    rows[0][2 * a] += 2.0 * mu * g[0];
+                    rows[1][2 * a + 1] += 2.0 * mu * g[1];
+                    rows[2][2 * a] = mu * g[1];
+                    rows[2][2 * a + 1] = mu * g[0];
+                }
+            }
+        }
+        rows
+    }
+
+    /// (σ_xx, σ_yy, σ_xy) and σ_zz at (ξ, η) for the full displacement `u`
+    /// of body `bi`.
+    pub fn stress(
+        &self,
+        map: &DofMap,
+        u: &[f64],
+        bi: usize,
+        shape: &Shape,
+        xi: f64,
+        eta: f64,
+    ) -> ([f64; 3], f64) {
+        let el = &self.body.space.elements[self.element];
+        let m = &self.body.material;
+        let eps = strain_at(map, u, bi, &el.cps, shape);
+        match &self.projection {
+            // the paper's path, operation for operation
+            None => {
+                let sig = m.stress(eps);
+                (sig, m.stress_zz(sig))
+            }
+            Some(proj) => {
+                let ue: Vec<f64> = el
+                    .cps
+                    .iter()
+                    .flat_map(|&cp| map.cp_displacement(u, bi, cp))
+                    .collect();
+                let theta_u = proj * DVector::from_vec(ue);
+                let np = pressure_basis(self.body, el, xi, eta);
+                let theta: f64 = np.iter().zip(theta_u.iter()).map(|(a, b)| a * b).sum();
+                m.mixed_stress(eps, theta)
+            }
+        }
+    }
+
+    /// The projected dilatation θ̄ at (ξ, η) (the trace of the strain for
+    /// the displacement formulation).
+    pub fn dilatation(
+        &self,
+        map: &DofMap,
+        u: &[f64],
+        bi: usize,
+        shape: &Shape,
+        xi: f64,
+        eta: f64,
+    ) -> f64 {
+        let el = &self.body.space.elements[self.element];
+        match &self.projection {
+            None => {
+                let eps = strain_at(map, u, bi, &el.cps, shape);
+                eps[0] + eps[1]
+            }
+            Some(proj) => {
+                let ue: Vec<f64> = el
+                    .cps
+                    .iter()
+                    .flat_map(|&cp| map.cp_displacement(u, bi, cp))
+                    .collect();
+                let theta_u = proj * DVector::from_vec(ue);
+                let np = pressure_basis(self.body, el, xi, eta);
+                np.iter().zip(theta_u.iter()).map(|(a, b)| a * b).sum()
+            }
+        }
+    }
+}
+
+/// The mixed formulation needs plane strain: in plane stress σ_zz = 0 lets
+/// the thickness change, so nothing locks and there is nothing to relax.
+fn check_mixed(body: &Body) -> Result<()> {
+    if body.material.plane != Plane::Strain {
+        return Err(Error::invalid(
+            format!("body `{}`.formulation", body.name),
+            "mixed",
+            "the mixed formulation is for plane strain; plane stress does not lock (σ_zz = 0 frees the thickness), use formulation = \"displacement\"",
+        ));
+    }
+    Ok(())
+}
+
+/// M = ∫ N_p N_pᵀ dΩ and G = ∫ N_p (∂/∂x, ∂/∂y) dΩ over element `e`.
+fn pressure_mass_and_divergence(body: &Body, e: usize) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let el = &body.space.elements[e];
+    let n = el.cps.len();
+    let mut m = DMatrix::zeros(0, 0);
+    let mut g = DMatrix::zeros(0, 0);
+    for qp in body.space.quadrature(el)? {
+        add_pressure_terms(body, el, &qp, n, &mut m, &mut g);
+    }
+    Ok((m, g))
+}
+
+fn add_pressure_terms(
+    body: &Body,
+    el: &Element,
+    qp: &crate::space::QuadPoint,
+    n: usize,
+    m: &mut DMatrix<f64>,
+    g: &mut DMatrix<f64>,
+) {
+    let np = pressure_basis(body, el, qp.param[0], qp.param[1]);
+    if m.nrows() != np.len() {
+        *m = DMatrix::zeros(np.len(), np.len());
+        *g = DMatrix::zeros(np.len(), 2 * n);
+    }
+    for (i, &pi) in np.iter().enumerate() {
+        let wp = qp.weight * pi;
+        for (j, &pj) in np.iter().enumerate() {
+            m[(i, j)] += wp * pj;
+        }
+        for (a, ga) in qp.shape.grad.iter().enumerate() {
+            g[(i, 2 * a)] += wp * ga[0];
+            g[(i, 2 * a + 1)] += wp * ga[1];
+        }
+    }
+}
+
+/// P = M⁻¹ G by a dense Cholesky of the small pressure mass matrix.
+fn projection_of(
+    m: &DMatrix<f64>,
+    g: &DMatrix<f64>,
+    body: &Body,
+    e: usize,
+) -> Result<DMatrix<f64>> {
+    let chol = m.clone().cholesky().ok_or_else(|| {
+        Error::Geometry(format!(
+            "body `{}`, element {e}: the pressure mass matrix is not positive definite",
+            body.name
+        ))
+    })?;
+    Ok(chol.solve(g))
 }
 
 /// The element stiffness and, for a body force b, the element load
@@ -104,12 +348,26 @@ fn element_integrals(
 ) -> Result<(DMatrix<f64>, DVector<f64>)> {
     let el = &body.space.elements[e];
     let n = el.cps.len();
-    let d = body.material.d_matrix();
+    let mixed = body.formulation == Formulation::Mixed;
+    if mixed {
+        check_mixed(body)?;
+    }
+    // the mixed formulation keeps only the deviatoric part pointwise; its
+    // volumetric part is κ Gᵀ M⁻¹ G, added after the loop
+    let d = if mixed {
+        body.material.d_deviatoric()
+    } else {
+        body.material.d_matrix()
+    };
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
     let mut fe = DVector::zeros(if force.is_some() { 2 * n } else { 0 });
+    let (mut pm, mut pg) = (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0));
     for qp in body.space.quadrature(el)? {
         if let Some(b) = force {
             add_shape_times(&mut fe, &qp.shape, b, qp.weight);
+        }
+        if mixed {
+            add_pressure_terms(body, el, &qp, n, &mut pm, &mut pg);
         }
         // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
@@ -132,6 +390,12 @@ fn element_integrals(
                 }
             }
         }
+    }
+    if mixed {
+        let proj = projection_of(&pm, &pg, body, e)?;
+        // κ Gᵀ M⁻¹ G, symmetrised against round-off
+        let vol = body.material.bulk_modulus() * pg.transpose() * proj;
+        ke += 0.5 * (&vol + vol.transpose());
     }
     Ok((ke, fe))
 }
@@ -615,7 +879,8 @@ pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<
 }
 
 /// Strain (Voigt, engineering shear) and stress of body `body` at (ξ, η)
-/// for the full displacement vector `u`.
+/// for the full displacement vector `u`; the stress is that of the body's
+/// formulation ([`ElementStress`]).
 pub fn strain_stress(
     bodies: &[Body],
     map: &DofMap,
@@ -625,10 +890,11 @@ pub fn strain_stress(
     eta: f64,
 ) -> Result<([f64; 3], [f64; 3])> {
     let b = &bodies[body];
-    let e = &b.space.elements[b.space.locate(xi, eta)];
+    let ei = b.space.locate(xi, eta);
+    let e = &b.space.elements[ei];
     let shape = b.space.shape(e, xi, eta)?;
-    let eps = strain_at(map, u, body, &e.cps, &shape);
-    Ok((eps, b.material.stress(eps)))
+    let (sig, _) = ElementStress::new(b, ei)?.stress(map, u, body, &shape, xi, eta);
+    Ok((strain_at(map, u, body, &e.cps, &shape), sig))
 }
 
 /// ε = Σ_A B_A u_A at a point with known shape functions.

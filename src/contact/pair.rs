@@ -6,8 +6,10 @@ use super::penalty::{
     empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
 };
 use super::projection::{along_normal, closest_point, Projection};
+use crate::assembly::ElementStress;
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::Formulation;
 use crate::nurbs::{NurbsCurve, Side};
 use crate::quadrature;
 
@@ -439,25 +441,40 @@ fn make_point(
         pair.nitsche.penalty_factor,
     );
 
-    // σ_n = mᵀ D B u with m = (n_x², n_y², 2 n_x n_y) in Voigt notation.
-    let d = slave.material.d_matrix();
+    // σ_n = mᵀ σ(u) with m = (n_x², n_y², 2 n_x n_y) in Voigt notation and
+    // σ the stress of the slave's formulation (for the mixed one, its
+    // element-local projected dilatation: the same DOFs)
     let m = [
         normal[0] * normal[0],
         normal[1] * normal[1],
         2.0 * normal[0] * normal[1],
     ];
-    let q: Vec<f64> = (0..3)
-        .map(|j| (0..3).map(|i| m[i] * d[i][j]).sum())
-        .collect();
     let el = &space.elements[be.element];
     let mut dofs = map.element_dofs(pair.slave, &el.cps);
     let mut sn = Vec::with_capacity(dofs.len());
+    match slave.formulation {
+        Formulation::Displacement => {
+            let d = slave.material.d_matrix();
+            let q: Vec<f64> = (0..3)
+                .map(|j| (0..3).map(|i| m[i] * d[i][j]).sum())
+                .collect();
+            for g in &shape.grad {
+                sn.push(q[0] * g[0] + q[2] * g[1]);
+                sn.push(q[1] * g[1] + q[2] * g[0]);
+            }
+        }
+        Formulation::Mixed => {
+            let q = space.patch.side_point(be.side, t);
+            let rows = ElementStress::new(slave, be.element)?.rows(&shape, q[0], q[1]);
+            sn.extend(
+                (0..dofs.len()).map(|k| m[0] * rows[0][k] + m[1] * rows[1][k] + m[2] * rows[2][k]),
+            );
+        }
+    }
     let mut jn = Vec::with_capacity(dofs.len());
-    for (a, g) in shape.grad.iter().enumerate() {
-        sn.push(q[0] * g[0] + q[2] * g[1]);
-        sn.push(q[1] * g[1] + q[2] * g[0]);
-        jn.push(shape.r[a] * normal[0]);
-        jn.push(shape.r[a] * normal[1]);
+    for r in &shape.r {
+        jn.push(r * normal[0]);
+        jn.push(r * normal[1]);
     }
     if let Some((mbody, cps, r)) = master_part {
         for (b, &cp) in cps.iter().enumerate() {

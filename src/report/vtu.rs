@@ -14,7 +14,7 @@
 //! fields on a grid inside every element and emits linear quads, which every
 //! reader understands and which resolve the field as finely as asked.
 
-use crate::assembly::{displacement_at, strain_at};
+use crate::assembly::{displacement_at, ElementStress};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::space::{Element, Shape, Space};
@@ -460,7 +460,10 @@ pub fn sample_bodies(
 
     for (bi, body) in bodies.iter().enumerate() {
         let space = &body.space;
-        for e in &space.elements {
+        for (ei, e) in space.elements.iter().enumerate() {
+            // the stress of the body's formulation (mixed: one projection
+            // per element, shared by its samples)
+            let stress_of = ElementStress::new(body, ei)?;
             let [[xa, xb], [ya, yb]] = e.range;
             let det_ref = space
                 .shape(e, 0.5 * (xa + xb), 0.5 * (ya + yb))
@@ -488,9 +491,7 @@ pub fn sample_bodies(
                     let shape = sample_shape(space, e, xi, eta, det_ref)
                         .map_err(|err| Error::Geometry(format!("body `{}`: {err}", body.name)))?;
                     let u = displacement_at(map, u_full, bi, &e.cps, &shape);
-                    let eps = strain_at(map, u_full, bi, &e.cps, &shape);
-                    let sig = body.material.stress(eps);
-                    let szz = body.material.stress_zz(sig);
+                    let (sig, szz) = stress_of.stress(map, u_full, bi, &shape, xi, eta);
                     mesh.points.push([shape.x[0], shape.x[1], 0.0]);
                     disp.extend([u[0], u[1], 0.0]);
                     stress.extend(sig);
