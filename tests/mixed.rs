@@ -310,3 +310,34 @@ fn the_formulation_key_is_validated() {
     assert!(matches!(err, Error::InvalidInput { .. }), "{err}");
     assert!(err.to_string().contains("plane stress"), "{err}");
 }
+
+/// The near-incompressibility warning judges a mixed body too (its local
+/// pressure still locks), says so, and names the refinement; the
+/// displacement body's warning mentions the mixed formulation without
+/// promising that it cures the locking.
+#[test]
+fn the_locking_warning_covers_both_formulations() {
+    use iga_contact::solver::warning::{locking, Warning};
+    for (f, words) in [
+        (
+            Formulation::Displacement,
+            "formulation = \"mixed\" lowers the error",
+        ),
+        (Formulation::Mixed, "locks even the mixed formulation"),
+    ] {
+        let mut s = common::hertz_scene(2, 16, Theta::Incomplete);
+        s.bodies[0].material.poisson = 0.4999;
+        s.bodies[0].formulation = f;
+        let p = s.build().unwrap();
+        let w = locking(&p.bodies[0]).expect("a warning");
+        assert!(
+            matches!(&w, Warning::NearlyIncompressible { formulation, .. } if *formulation == f)
+        );
+        let text = w.to_string();
+        assert!(text.contains(words) && text.contains("refine"), "{text}");
+        let mut s = common::hertz_scene(2, 16, Theta::Incomplete);
+        s.bodies[0].material.poisson = 0.3;
+        s.bodies[0].formulation = f;
+        assert!(locking(&s.build().unwrap().bodies[0]).is_none());
+    }
+}

@@ -12,7 +12,7 @@ use crate::contact::penalty::{first_touch, stability_of, PenaltyStability};
 use crate::contact::projection::closest_point;
 use crate::contact::{ContactPair, ContactPoint, Master, Modulus, Penalty, Role};
 use crate::dofs::Body;
-use crate::material::Plane;
+use crate::material::{Formulation, Plane};
 use crate::nurbs::Side;
 use crate::problem::Problem;
 
@@ -118,10 +118,13 @@ pub enum Warning {
         contrast: f64,
     },
     /// Body `body` is nearly incompressible (ν above [`LOCKING_POISSON`]) in
-    /// plane strain on a mesh too coarse for its displacement formulation
-    /// ([`LOCKING`]).
+    /// plane strain on a mesh too coarse for its formulation ([`LOCKING`]).
+    /// The mixed formulation's local pressure lowers the error but does not
+    /// remove the locking (chapter "Near incompressibility"), so it is
+    /// judged by the same indicator.
     NearlyIncompressible {
         body: String,
+        formulation: Formulation,
         poisson: f64,
         indicator: f64,
         /// The fewest elements per direction that bring the indicator to
@@ -246,12 +249,23 @@ impl std::fmt::Display for Warning {
             ),
             Warning::NearlyIncompressible {
                 body,
+                formulation: Formulation::Displacement,
                 poisson,
                 indicator,
                 elements,
             } => write!(
                 f,
-                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction (no mixed formulation is available)"
+                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction (formulation = \"mixed\" lowers the error but does not remove the locking)"
+            ),
+            Warning::NearlyIncompressible {
+                body,
+                formulation: Formulation::Mixed,
+                poisson,
+                indicator,
+                elements,
+            } => write!(
+                f,
+                "body {body:?}: ν = {poisson} in plane strain locks even the mixed formulation on its mesh (its pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction"
             ),
             Warning::ZoneAtSideEnd {
                 pair,
@@ -412,6 +426,7 @@ pub fn locking(b: &Body) -> Option<Warning> {
     let indicator = lambda_over_mu / fewest.powi(3);
     (indicator > LOCKING).then(|| Warning::NearlyIncompressible {
         body: b.name.clone(),
+        formulation: b.formulation,
         poisson: nu,
         indicator,
         elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
