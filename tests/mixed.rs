@@ -10,6 +10,8 @@ mod common;
 mod lame;
 #[path = "../examples/common/hertz.rs"]
 mod setup;
+#[path = "../examples/incompressibility/spline.rs"]
+mod spline;
 
 use iga_contact::assembly::{self, ElementStress};
 use iga_contact::contact::{Penalty, Theta};
@@ -339,5 +341,62 @@ fn the_locking_warning_covers_both_formulations() {
         s.bodies[0].material.poisson = 0.3;
         s.bodies[0].formulation = f;
         assert!(locking(&s.build().unwrap().bodies[0]).is_none());
+    }
+}
+
+/// The prototype of the continuous spline pressure (degree p − 1,
+/// lumped mass; `examples/incompressibility/spline.rs`, bulk only) meets
+/// issue 20's Lamé criterion at ν = 0.49999: rates within 0.2 of p + 1
+/// (L²) and p (energy) for p = 2, 3, and errors within 25 % of the
+/// compressible ones — the pressure space, not the B̄ idea, is what locks.
+#[test]
+fn a_continuous_spline_pressure_removes_the_locking_on_lame() {
+    for p in [2, 3] {
+        let e: Vec<(f64, f64)> = [8, 16, 32]
+            .iter()
+            .map(|&n| spline::lame_errors(p, n, 0.49999).unwrap())
+            .collect();
+        let c = lame_rows(Formulation::Displacement, 0.3, p, &[32]);
+        for w in e.windows(2) {
+            let (l2, en) = ((w[0].0 / w[1].0).log2(), (w[0].1 / w[1].1).log2());
+            assert!(
+                (l2 - (p as f64 + 1.0)).abs() <= 0.2,
+                "p = {p}: L² rate {l2}"
+            );
+            assert!((en - p as f64).abs() <= 0.2, "p = {p}: energy rate {en}");
+        }
+        assert!(
+            e[2].0 <= 1.25 * c[0].l2_error,
+            "p = {p}: {} vs {}",
+            e[2].0,
+            c[0].l2_error
+        );
+    }
+}
+
+/// The solve time at 256² for both formulations, measured in one run
+/// (ν = 0.3, where both take the same path): `cargo test --release --test
+/// mixed timing -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn timing_at_256() {
+    for f in [
+        Formulation::Displacement,
+        Formulation::Mixed,
+        Formulation::Displacement,
+        Formulation::Mixed,
+    ] {
+        let mut s = common::hertz_scene(2, 256, Theta::Incomplete);
+        s.bodies[0].material.poisson = 0.3;
+        s.bodies[0].formulation = f;
+        let t = std::time::Instant::now();
+        let p = s.build().unwrap();
+        let built = t.elapsed().as_secs_f64();
+        let sol = solve(&p, &SolverOptions::with_kind(SolverKind::Bfgs)).unwrap();
+        eprintln!(
+            "{f:?}: build {built:.2} s, total {:.2} s, {} iterations",
+            t.elapsed().as_secs_f64(),
+            sol.history.len()
+        );
     }
 }

@@ -13,6 +13,7 @@ mod hertz;
 #[path = "../lame.rs"]
 #[allow(dead_code)]
 mod lame;
+mod spline;
 
 use iga_contact::assembly::ElementStress;
 use iga_contact::contact::Penalty;
@@ -187,30 +188,48 @@ fn main() -> Result<()> {
         Column::new("l2_rate", "L² rate", Unit::None, Format::Fixed(2)),
         Column::new("energy_rate", "energy rate", Unit::None, Format::Fixed(2)),
     ]);
+    // the rates between the two finest meshes: (ν, formulation, p, L², energy)
+    let mut finest_rates: Vec<(f64, &str, usize, f64, f64)> = Vec::new();
     for nu in [0.3, 0.49999] {
-        for (f, name) in FORMULATIONS {
+        for (f, name) in FORMULATIONS
+            .iter()
+            .map(|(f, n)| (Some(*f), *n))
+            .chain([(None, "spline pressure")])
+        {
             for p in [2, 3] {
-                let problem = lame::Lame {
-                    poisson: nu,
-                    formulation: f,
-                    ..lame::Lame::default()
-                };
-                let rows: Vec<lame::Row> = [4, 8, 16, 32]
+                let rows: Vec<(usize, f64, f64)> = [4, 8, 16, 32]
                     .iter()
-                    .map(|&n| problem.solve(p, n))
+                    .map(|&n| match f {
+                        Some(formulation) => lame::Lame {
+                            poisson: nu,
+                            formulation,
+                            ..lame::Lame::default()
+                        }
+                        .solve(p, n)
+                        .map(|r| (n, r.l2_error, r.energy_error)),
+                        // the prototype of a continuous pressure (spline.rs)
+                        None => spline::lame_errors(p, n, nu).map(|(l2, en)| (n, l2, en)),
+                    })
                     .collect::<Result<_>>()?;
-                for (row, rate) in rows.iter().zip(lame::rates(&rows)) {
-                    let (l2r, enr): (Cell, Cell) = match rate {
-                        Some((a, b)) => (a.into(), b.into()),
+                for (k, &(n, l2, en)) in rows.iter().enumerate() {
+                    let (l2r, enr): (Cell, Cell) = match k.checked_sub(1).map(|j| rows[j]) {
+                        Some((n0, l20, en0)) => {
+                            let dh = (n as f64 / n0 as f64).ln();
+                            let (a, b) = ((l20 / l2).ln() / dh, (en0 / en).ln() / dh);
+                            if k + 1 == rows.len() {
+                                finest_rates.push((nu, name, p, a, b));
+                            }
+                            (a.into(), b.into())
+                        }
                         None => (Cell::Empty, Cell::Empty),
                     };
                     lame_table.push(vec![
                         nu.into(),
                         name.into(),
                         p.into(),
-                        row.n.into(),
-                        row.l2_error.into(),
-                        row.energy_error.into(),
+                        n.into(),
+                        l2.into(),
+                        en.into(),
                         l2r,
                         enr,
                     ])?;
@@ -288,6 +307,13 @@ fn main() -> Result<()> {
                     }
                 }
             }
+        }
+    }
+    for &(nu, name, p, l2, en) in &finest_rates {
+        if nu == 0.49999 {
+            let name = name.split(' ').next().unwrap_or(name);
+            f.number(&format!("l2_rate_{name}_p{p}"), l2, Format::Fixed(2))?;
+            f.number(&format!("energy_rate_{name}_p{p}"), en, Format::Fixed(2))?;
         }
     }
     // ANCHOR_END: facts
