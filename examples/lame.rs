@@ -156,8 +156,15 @@ impl Lame {
         };
         let space = &bodies[0].space;
         let (mut l2_num, mut l2_den, mut en_num, mut en_den) = (0.0, 0.0, 0.0, 0.0);
+        let pressure = match self.formulation {
+            Formulation::Mixed => Some(std::sync::Arc::new(
+                iga_contact::pressure::SplinePressure::new(&bodies[0])?,
+            )),
+            _ => None,
+        };
         for (ei, el) in space.elements.iter().enumerate() {
-            let stress_of = assembly::ElementStress::new(&bodies[0], ei)?;
+            let stress_of =
+                assembly::ElementStress::with_pressure(&bodies[0], ei, pressure.as_ref())?;
             let gx = quadrature::on_interval(p + 3, el.range[0][0], el.range[0][1]);
             let gy = quadrature::on_interval(p + 3, el.range[1][0], el.range[1][1]);
             for &(eta, wy) in &gy {
@@ -177,7 +184,7 @@ impl Lame {
                             en_num += w * energy(de);
                             en_den += w * energy(ee);
                         }
-                        Formulation::Mixed => {
+                        Formulation::Mixed | Formulation::LocalMixed => {
                             let th = stress_of.dilatation(&map, &u, 0, &shape, xi, eta);
                             en_num += w * split_energy(de, th - ee[0] - ee[1]);
                             en_den += w * split_energy(ee, ee[0] + ee[1]);

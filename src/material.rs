@@ -18,23 +18,28 @@ pub enum Plane {
 /// The displacement formulation takes σ = D ε(u) at every point. Near
 /// incompressibility (ν → ½ in plane strain) its volumetric term κ (div u)²
 /// asks div u to vanish at every quadrature point, more constraints than a
-/// spline space can meet, and the body locks. The mixed formulation replaces
-/// div u in the volumetric part by its L² projection θ̄ onto polynomials of
-/// degree p − 1 per parametric direction on each element (a pressure that is
-/// discontinuous between elements, eliminated element by element): the
-/// B̄ method of Hughes (2000, §4.5) in the form Elguedj, Bazilevs, Calo &
-/// Hughes (CMAME 197, 2008) study for NURBS, with a local projection. The
-/// element stiffness stays symmetric, positive semi-definite and on the
-/// element's own DOFs, so the global matrix keeps its sparsity and its
-/// single factorisation.
+/// spline space can meet, and the body locks. The mixed formulations are
+/// the B̄ method (Hughes 2000, §4.5; Elguedj, Bazilevs, Calo & Hughes,
+/// CMAME 197, 2008): σ = 2μ dev ε(u) + κ θ̄ I with θ̄ a projection of div u
+/// onto a pressure space, the pressure eliminated so that the stiffness
+/// stays symmetric positive definite and sparse (one factorisation per
+/// solve). `Mixed` projects onto the continuous splines of degree p − 1
+/// ([`crate::pressure`]) and does not lock; `LocalMixed` projects per element
+/// onto Q_{p−1}, keeps the element-local structure, and still locks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Formulation {
     /// σ = D ε(u) (the paper's).
     #[default]
     Displacement,
-    /// σ = 2μ dev ε(u) + κ θ̄ I with θ̄ the element-local projection of div u.
+    /// σ = 2μ dev ε(u) + κ θ̄ I with θ̄ the projection of div u onto the
+    /// continuous splines of degree p − 1 ([`crate::pressure`]).
     Mixed,
+    /// As `Mixed` with θ̄ the projection onto polynomials of degree p − 1
+    /// per element, discontinuous between elements: element-local, but it
+    /// still locks on maximally smooth splines (kept as the comparison of
+    /// the chapter "Near incompressibility").
+    LocalMixed,
 }
 
 impl Formulation {
@@ -43,6 +48,7 @@ impl Formulation {
         match self {
             Formulation::Displacement => "displacement",
             Formulation::Mixed => "mixed",
+            Formulation::LocalMixed => "local_mixed",
         }
     }
 }

@@ -104,9 +104,11 @@ pub struct BodySpec {
     #[serde(default)]
     pub refine: Option<RefineSpec>,
     pub material: Material,
-    /// `"displacement"` (default, the paper's) or `"mixed"`: the locking-free
-    /// formulation for nearly incompressible plane-strain bodies
-    /// ([`crate::material::Formulation`]); refused in plane stress.
+    /// `"displacement"` (default, the paper's), `"mixed"` (locking-free, for
+    /// nearly incompressible plane-strain bodies) or `"local_mixed"` (its
+    /// element-local variant, which still locks): see
+    /// [`crate::material::Formulation`]; the mixed ones are refused in plane
+    /// stress.
     #[serde(default)]
     pub formulation: Formulation,
     /// Gauss points per direction; default p + 1.
@@ -1024,10 +1026,10 @@ impl Scene {
                 r.validate(&format!("{f}.refine"), b.geometry.degree())?;
             }
             b.material.validate(&format!("{f}.material"))?;
-            if b.formulation == Formulation::Mixed && b.material.plane != Plane::Strain {
+            if b.formulation != Formulation::Displacement && b.material.plane != Plane::Strain {
                 return Err(Error::invalid(
                     format!("{f}.formulation"),
-                    "\"mixed\"",
+                    format!("{:?}", b.formulation.name()),
                     "the mixed formulation is for plane strain; plane stress does not lock (σ_zz = 0 frees the thickness), so use formulation = \"displacement\"",
                 ));
             }

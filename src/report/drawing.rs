@@ -76,8 +76,15 @@ pub fn field_cells(
     let mut cells = Vec::new();
     for (bi, body) in problem.bodies.iter().enumerate() {
         let space = &body.space;
+        let pressure = match body.formulation {
+            crate::material::Formulation::Mixed => Some(std::sync::Arc::new(
+                crate::pressure::SplinePressure::new(body)?,
+            )),
+            _ => None,
+        };
         for (ei, e) in space.elements.iter().enumerate() {
-            let stress_of = crate::assembly::ElementStress::new(body, ei)?;
+            let stress_of =
+                crate::assembly::ElementStress::with_pressure(body, ei, pressure.as_ref())?;
             let [[xa, xb], [ya, yb]] = e.range;
             let param = |s: f64, t: f64| (xa + (xb - xa) * s, ya + (yb - ya) * t);
             let corner = |s: f64, t: f64| -> [f64; 2] {

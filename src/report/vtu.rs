@@ -17,9 +17,12 @@
 use crate::assembly::{displacement_at, ElementStress};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::Formulation;
+use crate::pressure::SplinePressure;
 use crate::space::{Element, Shape, Space};
 use std::fmt::Write as _;
 use std::path::Path;
+use std::sync::Arc;
 
 /// VTK cell type of the linear quadrilateral.
 pub const VTK_QUAD: u8 = 9;
@@ -460,10 +463,14 @@ pub fn sample_bodies(
 
     for (bi, body) in bodies.iter().enumerate() {
         let space = &body.space;
+        // the stress of the body's formulation (mixed: one pressure space
+        // per body, shared by its elements)
+        let pressure = match body.formulation {
+            Formulation::Mixed => Some(Arc::new(SplinePressure::new(body)?)),
+            _ => None,
+        };
         for (ei, e) in space.elements.iter().enumerate() {
-            // the stress of the body's formulation (mixed: one projection
-            // per element, shared by its samples)
-            let stress_of = ElementStress::new(body, ei)?;
+            let stress_of = ElementStress::with_pressure(body, ei, pressure.as_ref())?;
             let [[xa, xb], [ya, yb]] = e.range;
             let det_ref = space
                 .shape(e, 0.5 * (xa + xb), 0.5 * (ya + yb))

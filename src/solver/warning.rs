@@ -119,9 +119,8 @@ pub enum Warning {
     },
     /// Body `body` is nearly incompressible (ν above [`LOCKING_POISSON`]) in
     /// plane strain on a mesh too coarse for its formulation ([`LOCKING`]).
-    /// The mixed formulation's local pressure lowers the error but does not
-    /// remove the locking (chapter "Near incompressibility"), so it is
-    /// judged by the same indicator.
+    /// The local mixed formulation is judged by the same indicator (it still
+    /// locks); the mixed one is not judged (it does not).
     NearlyIncompressible {
         body: String,
         formulation: Formulation,
@@ -255,17 +254,18 @@ impl std::fmt::Display for Warning {
                 elements,
             } => write!(
                 f,
-                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction (formulation = \"mixed\" lowers the error but does not remove the locking)"
+                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?} (its continuous pressure does not lock), or refine it to at least {elements} elements in each direction"
             ),
             Warning::NearlyIncompressible {
                 body,
-                formulation: Formulation::Mixed,
+                formulation: Formulation::Mixed | Formulation::LocalMixed,
+                // (never raised for `Mixed`; the words fit the local one)
                 poisson,
                 indicator,
                 elements,
             } => write!(
                 f,
-                "body {body:?}: ν = {poisson} in plane strain locks even the mixed formulation on its mesh (its pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction"
+                "body {body:?}: ν = {poisson} in plane strain locks its formulation on its mesh (a pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?}, or refine it to at least {elements} elements in each direction"
             ),
             Warning::ZoneAtSideEnd {
                 pair,
@@ -417,7 +417,12 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
 /// above [`LOCKING`].
 pub fn locking(b: &Body) -> Option<Warning> {
     let nu = b.material.poisson;
-    if b.material.plane != Plane::Strain || nu <= LOCKING_POISSON {
+    // the mixed formulation's continuous pressure does not lock (chapter
+    // "Near incompressibility")
+    if b.material.plane != Plane::Strain
+        || nu <= LOCKING_POISSON
+        || b.formulation == Formulation::Mixed
+    {
         return None;
     }
     let lambda_over_mu = 2.0 * nu / (1.0 - 2.0 * nu);
