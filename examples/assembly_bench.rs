@@ -39,6 +39,7 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
         name: "half disk".into(),
         space: Space::new(patch, None)?,
         material: Material::new(2.0e7, 0.1, Plane::Strain)?,
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let mut builder = DofMap::builder(&bodies);
     builder

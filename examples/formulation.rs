@@ -97,6 +97,7 @@ fn run() -> iga_contact::Result<()> {
         name: "disk".into(),
         space: Space::new(slave.clone(), None)?,
         material,
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let map = DofMap::builder(&bodies).build();
     let mut pair = ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()));

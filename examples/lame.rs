@@ -17,7 +17,7 @@ use iga_contact::assembly::{self, Load};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry::quarter_annulus;
 use iga_contact::linsolve::{Factoriser, Method, Pattern};
-use iga_contact::material::{Material, Plane};
+use iga_contact::material::{Formulation, Material, Plane};
 use iga_contact::nurbs::Side;
 use iga_contact::quadrature;
 use iga_contact::report::chapter::Chapter;
@@ -33,6 +33,8 @@ pub struct Lame {
     pub young: f64,
     pub poisson: f64,
     pub pressure: f64,
+    /// The body's formulation (the paper's displacement one by default).
+    pub formulation: Formulation,
 }
 
 impl Default for Lame {
@@ -43,6 +45,7 @@ impl Default for Lame {
             young: 1.0e5,
             poisson: 0.3,
             pressure: 100.0,
+            formulation: Formulation::Displacement,
         }
     }
 }
@@ -112,6 +115,7 @@ impl Lame {
             name: "cylinder".into(),
             space: Space::new(patch, None)?,
             material: self.material()?,
+            formulation: self.formulation,
         }];
         let mut builder = DofMap::builder(&bodies);
         builder
@@ -138,9 +142,29 @@ impl Lame {
                 .map(|i| (0..3).map(|j| e[i] * d[i][j] * e[j]).sum::<f64>())
                 .sum()
         };
+        // the mixed formulation's energy: 2μ |dev e|² + κ (θ̄_h − tr ε)², the
+        // displacement one's eᵀ D e written the same way
+        let (mu, kappa) = (
+            bodies[0].material.shear_modulus(),
+            bodies[0].material.bulk_modulus(),
+        );
+        let split_energy = |e: [f64; 3], vol: f64| -> f64 {
+            let tr = (e[0] + e[1]) / 3.0;
+            let dev = [e[0] - tr, e[1] - tr, -tr];
+            2.0 * mu * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2] + 0.5 * e[2] * e[2])
+                + kappa * vol * vol
+        };
         let space = &bodies[0].space;
         let (mut l2_num, mut l2_den, mut en_num, mut en_den) = (0.0, 0.0, 0.0, 0.0);
-        for el in &space.elements {
+        let pressure = match self.formulation {
+            Formulation::Mixed => Some(std::sync::Arc::new(
+                iga_contact::pressure::SplinePressure::new(&bodies[0])?,
+            )),
+            _ => None,
+        };
+        for (ei, el) in space.elements.iter().enumerate() {
+            let stress_of =
+                assembly::ElementStress::with_pressure(&bodies[0], ei, pressure.as_ref())?;
             let gx = quadrature::on_interval(p + 3, el.range[0][0], el.range[0][1]);
             let gy = quadrature::on_interval(p + 3, el.range[1][0], el.range[1][1]);
             for &(eta, wy) in &gy {
@@ -155,8 +179,17 @@ impl Lame {
                     let de = [eh[0] - ee[0], eh[1] - ee[1], eh[2] - ee[2]];
                     l2_num += w * (du[0] * du[0] + du[1] * du[1]);
                     l2_den += w * (ue[0] * ue[0] + ue[1] * ue[1]);
-                    en_num += w * energy(de);
-                    en_den += w * energy(ee);
+                    match self.formulation {
+                        Formulation::Displacement => {
+                            en_num += w * energy(de);
+                            en_den += w * energy(ee);
+                        }
+                        Formulation::Mixed | Formulation::LocalMixed => {
+                            let th = stress_of.dilatation(&map, &u, 0, &shape, xi, eta);
+                            en_num += w * split_energy(de, th - ee[0] - ee[1]);
+                            en_den += w * split_energy(ee, ee[0] + ee[1]);
+                        }
+                    }
                 }
             }
         }

@@ -3,12 +3,15 @@
 
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::{Formulation, Plane};
 use crate::nurbs::Side;
+use crate::pressure::SplinePressure;
 use crate::quadrature;
-use crate::space::Shape;
+use crate::space::{Element, Shape};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Coordinate-format entries over the free DOFs. Duplicates are summed when
 /// the matrix is built, so element matrices are appended as they come.
@@ -90,9 +93,353 @@ pub fn btdb(ga: [f64; 2], gb: [f64; 2], d: &[[f64; 3]; 3]) -> [[f64; 2]; 2] {
     ]
 }
 
-/// Element stiffness ∫ Bᵀ D B dΩ in local order (control point major).
+/// Element stiffness in local order (control point major): ∫ Bᵀ D B dΩ
+/// for the displacement formulation; for the local mixed one ∫ Bᵀ D_dev B
+/// dΩ + κ Gᵀ M⁻¹ G ([`ElementStress`]); for the mixed one only the
+/// deviatoric part ∫ Bᵀ D_dev B dΩ — its volumetric part couples the
+/// elements under each pressure function ([`volumetric_terms`]).
 pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
     Ok(element_integrals(body, e, None)?.0)
+}
+
+/// The volumetric part of the mixed formulation's stiffness: one term
+/// κ ĝ_i ĝ_iᵀ / m̂_i per pressure function i, as (DOFs 2·cp + component, values).
+pub fn volumetric_terms(body: &Body, sp: &SplinePressure) -> Vec<(Vec<usize>, DMatrix<f64>)> {
+    let kappa = body.material.bulk_modulus();
+    (0..sp.len())
+        .map(|i| {
+            let g = sp.div(i);
+            let m = sp.mass(i);
+            let dofs = g.iter().map(|e| e.0).collect();
+            let k = DMatrix::from_fn(g.len(), g.len(), |a, b| kappa * g[a].1 * g[b].1 / m);
+            (dofs, k)
+        })
+        .collect()
+}
+
+/// The pressure basis of the local mixed formulation on element `el` at
+/// (ξ, η): tensor products of Legendre polynomials of degree 0..p − 1 in
+/// each parametric direction, on the element's own parameter range.
+/// Legendre rather than monomials keep the element mass matrix M well
+/// conditioned (diagonal on affine elements).
+pub fn pressure_basis(body: &Body, el: &Element, xi: f64, eta: f64) -> Vec<f64> {
+    let deg = body.space.patch.degree();
+    let along = |d: usize, t: f64| -> Vec<f64> {
+        let [a, b] = el.range[d];
+        let s = 2.0 * (t - a) / (b - a) - 1.0;
+        let n = deg[d].max(1);
+        let mut out = Vec::with_capacity(n);
+        // Bonnet's recursion
+        let (mut p0, mut p1) = (1.0, s);
+        for k in 0..n {
+            match k {
+                0 => out.push(1.0),
+                1 => out.push(s),
+                _ => {
+                    let kf = k as f64;
+                    let p2 = ((2.0 * kf - 1.0) * s * p1 - (kf - 1.0) * p0) / kf;
+                    out.push(p2);
+                    (p0, p1) = (p1, p2);
+                }
+            }
+        }
+        out
+    };
+    let (bx, by) = (along(0, xi), along(1, eta));
+    by.iter()
+        .flat_map(|&y| bx.iter().map(move |&x| x * y))
+        .collect()
+}
+
+/// How an element's stress depends on the displacements.
+#[derive(Clone, Debug)]
+enum Dilatation {
+    /// σ = D ε(u).
+    Pointwise,
+    /// The local projection P = M⁻¹ G onto Q_{p−1} on the element.
+    Local(DMatrix<f64>),
+    /// The spline projection of the body ([`SplinePressure`]).
+    Spline(Arc<SplinePressure>),
+}
+
+/// The stress of one element as linear functionals of the DOFs of the
+/// control points it reaches ([`ElementStress::cps`]: the element's own,
+/// then for the mixed formulation those of the neighbouring elements under
+/// its pressure functions), for every formulation. Build it once per
+/// element and evaluate it at many points.
+#[derive(Clone, Debug)]
+pub struct ElementStress<'a> {
+    body: &'a Body,
+    element: usize,
+    dilatation: Dilatation,
+    cps: Vec<usize>,
+}
+
+impl<'a> ElementStress<'a> {
+    /// For the mixed formulation this integrates the body's whole pressure
+    /// space; to evaluate many elements, build it once and use
+    /// [`ElementStress::with_pressure`].
+    pub fn new(body: &'a Body, element: usize) -> Result<Self> {
+        let sp = match body.formulation {
+            Formulation::Mixed => Some(Arc::new(SplinePressure::new(body)?)),
+            _ => None,
+        };
+        Self::with_pressure(body, element, sp.as_ref())
+    }
+
+    /// As [`ElementStress::new`] with the body's pressure space `sp`
+    /// (required for, and only used by, the mixed formulation).
+    pub fn with_pressure(
+        body: &'a Body,
+        element: usize,
+        sp: Option<&Arc<SplinePressure>>,
+    ) -> Result<Self> {
+        let own = body.space.elements[element].cps.clone();
+        let (dilatation, cps) = match body.formulation {
+            Formulation::Displacement => (Dilatation::Pointwise, own),
+            Formulation::LocalMixed => {
+                check_mixed(body)?;
+                let (m, g) = pressure_mass_and_divergence(body, element)?;
+                (
+                    Dilatation::Local(projection_of(&m, &g, body, element)?),
+                    own,
+                )
+            }
+            Formulation::Mixed => {
+                check_mixed(body)?;
+                let sp = sp.ok_or_else(|| {
+                    Error::invalid(
+                        format!("body `{}`.formulation", body.name),
+                        "mixed",
+                        "the stress of the mixed formulation needs the body's pressure space",
+                    )
+                })?;
+                let mut cps = own.clone();
+                for &(i, _) in sp.on_element(element) {
+                    for &(d, _) in sp.div(i) {
+                        let cp = d / 2;
+                        if !cps.contains(&cp) {
+                            cps.push(cp);
+                        }
+                    }
+                }
+                cps[own.len()..].sort_unstable();
+                (Dilatation::Spline(Arc::clone(sp)), cps)
+            }
+        };
+        Ok(Self {
+            body,
+            element,
+            dilatation,
+            cps,
+        })
+    }
+
+    /// The control points whose DOFs the stress reaches: the element's own
+    /// first (in its local order), then the others, sorted.
+    pub fn cps(&self) -> &[usize] {
+        &self.cps
+    }
+
+    /// θ̄ at (ξ, η) as a functional over [`ElementStress::cps`] (2 per
+    /// point), `None` for the displacement formulation.
+    fn theta(&self, xi: f64, eta: f64) -> Option<Vec<f64>> {
+        match &self.dilatation {
+            Dilatation::Pointwise => None,
+            Dilatation::Local(proj) => {
+                let el = &self.body.space.elements[self.element];
+                let np = pressure_basis(self.body, el, xi, eta);
+                let t = DMatrix::from_row_slice(1, np.len(), &np) * proj;
+                Some(t.iter().copied().collect())
+            }
+            Dilatation::Spline(sp) => {
+                let mut out = vec![0.0; 2 * self.cps.len()];
+                for (d, v) in sp.theta_row(xi, eta) {
+                    let k = self
+                        .cps
+                        .iter()
+                        .position(|&c| c == d / 2)
+                        .expect("θ̄ reaches only the element's pressure neighbourhood");
+                    out[2 * k + d % 2] += v;
+                }
+                Some(out)
+            }
+        }
+    }
+
+    /// The rows of σ_xx, σ_yy, σ_xy and σ_zz over the DOFs of
+    /// [`ElementStress::cps`] at (ξ, η), with `shape` the element's shape
+    /// functions there.
+    pub fn rows(&self, shape: &Shape, xi: f64, eta: f64) -> [Vec<f64>; 4] {
+        let m = &self.body.material;
+        let mut rows: [Vec<f64>; 4] = std::array::from_fn(|_| vec![0.0; 2 * self.cps.len()]);
+        match self.theta(xi, eta) {
+            None => {
+                let d = m.d_matrix();
+                for (a, g) in shape.grad.iter().enumerate() {
+                    rows[0][2 * a] = d[0][0] * g[0];
+                    rows[0][2 * a + 1] = d[0][1] * g[1];
+                    rows[1][2 * a] = d[1][0] * g[0];
+                    rows[1][2 * a + 1] = d[1][1] * g[1];
+                    rows[2][2 * a] = d[2][2] * g[1];
+                    rows[2][2 * a + 1] = d[2][2] * g[0];
+                    if m.plane == Plane::Strain {
+                        for c in 0..2 {
+                            rows[3][2 * a + c] =
+                                m.poisson * (rows[0][2 * a + c] + rows[1][2 * a + c]);
+                        }
+                    }
+                }
+            }
+            Some(theta) => {
+                let (mu, kappa) = (m.shear_modulus(), m.bulk_modulus());
+                // p = κ θ̄ − (2μ/3) tr ε: the mean stress with ε_zz = 0
+                for (k, t) in theta.iter().enumerate() {
+                    for row in [0, 1, 3] {
+                        rows[row][k] = kappa * t;
+                    }
+                }
+                for (a, g) in shape.grad.iter().enumerate() {
+                    for c in 0..2 {
+                        for row in [0, 1, 3] {
+                            rows[row][2 * a + c] -= 2.0 * mu / 3.0 * g[c];
+                        }
+                    }
+                    rows[0][2 * a] += 2.0 * mu * g[0];
+                    rows[1][2 * a + 1] += 2.0 * mu * g[1];
+                    rows[2][2 * a] = mu * g[1];
+                    rows[2][2 * a + 1] = mu * g[0];
+                }
+            }
+        }
+        rows
+    }
+
+    /// The DOFs of [`ElementStress::cps`] in a full vector of body `bi`.
+    fn values(&self, map: &DofMap, u: &[f64], bi: usize) -> Vec<f64> {
+        self.cps
+            .iter()
+            .flat_map(|&cp| map.cp_displacement(u, bi, cp))
+            .collect()
+    }
+
+    /// (σ_xx, σ_yy, σ_xy) and σ_zz at (ξ, η) for the full displacement `u`
+    /// of body `bi`.
+    pub fn stress(
+        &self,
+        map: &DofMap,
+        u: &[f64],
+        bi: usize,
+        shape: &Shape,
+        xi: f64,
+        eta: f64,
+    ) -> ([f64; 3], f64) {
+        let el = &self.body.space.elements[self.element];
+        let m = &self.body.material;
+        let eps = strain_at(map, u, bi, &el.cps, shape);
+        match self.theta(xi, eta) {
+            // the paper's path, operation for operation
+            None => {
+                let sig = m.stress(eps);
+                (sig, m.stress_zz(sig))
+            }
+            Some(theta) => {
+                let ue = self.values(map, u, bi);
+                let t: f64 = theta.iter().zip(&ue).map(|(a, b)| a * b).sum();
+                m.mixed_stress(eps, t)
+            }
+        }
+    }
+
+    /// The projected dilatation θ̄ at (ξ, η) (the trace of the strain for
+    /// the displacement formulation).
+    pub fn dilatation(
+        &self,
+        map: &DofMap,
+        u: &[f64],
+        bi: usize,
+        shape: &Shape,
+        xi: f64,
+        eta: f64,
+    ) -> f64 {
+        match self.theta(xi, eta) {
+            None => {
+                let el = &self.body.space.elements[self.element];
+                let eps = strain_at(map, u, bi, &el.cps, shape);
+                eps[0] + eps[1]
+            }
+            Some(theta) => {
+                let ue = self.values(map, u, bi);
+                theta.iter().zip(&ue).map(|(a, b)| a * b).sum()
+            }
+        }
+    }
+}
+
+/// The mixed formulation needs plane strain: in plane stress σ_zz = 0 lets
+/// the thickness change, so nothing locks and there is nothing to relax.
+fn check_mixed(body: &Body) -> Result<()> {
+    if body.material.plane != Plane::Strain {
+        return Err(Error::invalid(
+            format!("body `{}`.formulation", body.name),
+            "mixed",
+            "the mixed formulation is for plane strain; plane stress does not lock (σ_zz = 0 frees the thickness), use formulation = \"displacement\"",
+        ));
+    }
+    Ok(())
+}
+
+/// M = ∫ N_p N_pᵀ dΩ and G = ∫ N_p (∂/∂x, ∂/∂y) dΩ over element `e`.
+fn pressure_mass_and_divergence(body: &Body, e: usize) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let el = &body.space.elements[e];
+    let n = el.cps.len();
+    let mut m = DMatrix::zeros(0, 0);
+    let mut g = DMatrix::zeros(0, 0);
+    for qp in body.space.quadrature(el)? {
+        add_pressure_terms(body, el, &qp, n, &mut m, &mut g);
+    }
+    Ok((m, g))
+}
+
+fn add_pressure_terms(
+    body: &Body,
+    el: &Element,
+    qp: &crate::space::QuadPoint,
+    n: usize,
+    m: &mut DMatrix<f64>,
+    g: &mut DMatrix<f64>,
+) {
+    let np = pressure_basis(body, el, qp.param[0], qp.param[1]);
+    if m.nrows() != np.len() {
+        *m = DMatrix::zeros(np.len(), np.len());
+        *g = DMatrix::zeros(np.len(), 2 * n);
+    }
+    for (i, &pi) in np.iter().enumerate() {
+        let wp = qp.weight * pi;
+        for (j, &pj) in np.iter().enumerate() {
+            m[(i, j)] += wp * pj;
+        }
+        for (a, ga) in qp.shape.grad.iter().enumerate() {
+            g[(i, 2 * a)] += wp * ga[0];
+            g[(i, 2 * a + 1)] += wp * ga[1];
+        }
+    }
+}
+
+/// P = M⁻¹ G by a dense Cholesky of the small pressure mass matrix.
+fn projection_of(
+    m: &DMatrix<f64>,
+    g: &DMatrix<f64>,
+    body: &Body,
+    e: usize,
+) -> Result<DMatrix<f64>> {
+    let chol = m.clone().cholesky().ok_or_else(|| {
+        Error::Geometry(format!(
+            "body `{}`, element {e}: the pressure mass matrix is not positive definite",
+            body.name
+        ))
+    })?;
+    Ok(chol.solve(g))
 }
 
 /// The element stiffness and, for a body force b, the element load
@@ -104,12 +451,28 @@ fn element_integrals(
 ) -> Result<(DMatrix<f64>, DVector<f64>)> {
     let el = &body.space.elements[e];
     let n = el.cps.len();
-    let d = body.material.d_matrix();
+    let deviatoric = body.formulation != Formulation::Displacement;
+    let mixed = body.formulation == Formulation::LocalMixed;
+    if deviatoric {
+        check_mixed(body)?;
+    }
+    // the mixed formulations keep only the deviatoric part pointwise; the
+    // local one adds its volumetric part κ Gᵀ M⁻¹ G after the loop, the
+    // spline one in `volumetric_terms`
+    let d = if deviatoric {
+        body.material.d_deviatoric()
+    } else {
+        body.material.d_matrix()
+    };
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
     let mut fe = DVector::zeros(if force.is_some() { 2 * n } else { 0 });
+    let (mut pm, mut pg) = (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0));
     for qp in body.space.quadrature(el)? {
         if let Some(b) = force {
             add_shape_times(&mut fe, &qp.shape, b, qp.weight);
+        }
+        if mixed {
+            add_pressure_terms(body, el, &qp, n, &mut pm, &mut pg);
         }
         // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
@@ -132,6 +495,12 @@ fn element_integrals(
                 }
             }
         }
+    }
+    if mixed {
+        let proj = projection_of(&pm, &pg, body, e)?;
+        // κ Gᵀ M⁻¹ G, symmetrised against round-off
+        let vol = body.material.bulk_modulus() * pg.transpose() * proj;
+        ke += 0.5 * (&vol + vol.transpose());
     }
     Ok((ke, fe))
 }
@@ -163,6 +532,16 @@ pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> 
             let dofs = map.element_dofs(bi, &body.space.elements[e].cps);
             trip.add(map, &dofs, &ke?, &mut lift);
         }
+        if body.formulation == Formulation::Mixed {
+            let sp = SplinePressure::new(body)?;
+            for (local, k) in volumetric_terms(body, &sp) {
+                let dofs: Vec<usize> = local
+                    .iter()
+                    .map(|&d| map.global(bi, d / 2, d % 2))
+                    .collect();
+                trip.add(map, &dofs, &k, &mut lift);
+            }
+        }
     }
     Ok((trip, lift))
 }
@@ -170,17 +549,26 @@ pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> 
 // ---------------------------------------------------------------- CSC
 
 /// For every basis function of a knot vector, the first and last basis
-/// function it shares a span with.
-fn coupled_range(knots: &crate::nurbs::KnotVector) -> Vec<(usize, usize)> {
+/// function it shares a span with — or, with `reach` = r > 0, a span
+/// within r spans of one of its own (the mixed formulation couples two
+/// functions when both meet the support of one pressure function, whose
+/// support is p spans wide: r = p − 1).
+fn coupled_range(knots: &crate::nurbs::KnotVector, reach: usize) -> Vec<(usize, usize)> {
     let p = knots.degree();
-    let mut range = vec![(usize::MAX, 0usize); knots.n_basis()];
-    for (s, _, _) in knots.spans() {
-        for r in &mut range[s - p..=s] {
-            r.0 = r.0.min(s - p);
-            r.1 = r.1.max(s);
+    let spans: Vec<usize> = knots.spans().iter().map(|s| s.0).collect();
+    let mut own = vec![(usize::MAX, 0usize); knots.n_basis()];
+    for (k, &s) in spans.iter().enumerate() {
+        for r in &mut own[s - p..=s] {
+            r.0 = r.0.min(k);
+            r.1 = r.1.max(k);
         }
     }
-    range
+    own.iter()
+        .map(|&(lo, hi)| {
+            let (lo, hi) = (lo.saturating_sub(reach), (hi + reach).min(spans.len() - 1));
+            (spans[lo] - p, spans[hi])
+        })
+        .collect()
 }
 
 /// The number of free DOFs with a global index below g, for every g.
@@ -302,9 +690,13 @@ pub fn stiffness_matrix(
     let ranges: Vec<[Vec<(usize, usize)>; 2]> = bodies
         .iter()
         .map(|b| {
+            let reach = |d: usize| match b.formulation {
+                Formulation::Mixed => b.space.patch.knots[d].degree().saturating_sub(1),
+                _ => 0,
+            };
             [
-                coupled_range(&b.space.patch.knots[0]),
-                coupled_range(&b.space.patch.knots[1]),
+                coupled_range(&b.space.patch.knots[0], reach(0)),
+                coupled_range(&b.space.patch.knots[1], reach(1)),
             ]
         })
         .collect();
@@ -387,6 +779,28 @@ pub fn stiffness_matrix(
     let body_loads = split_at_all(&mut body_load, &chunk_bounds(&chunks, n));
     let vals = split_at_all(&mut val, &bounds);
     let (col_ptr_ref, row_idx_ref) = (&col_ptr, &row_idx);
+    // the volumetric terms of mixed bodies, as free DOFs (None: prescribed)
+    let volumetric: Vec<Vec<(Vec<usize>, DMatrix<f64>)>> = bodies
+        .iter()
+        .enumerate()
+        .map(|(bi, b)| -> Result<_> {
+            if b.formulation != Formulation::Mixed {
+                return Ok(Vec::new());
+            }
+            let sp = SplinePressure::new(b)?;
+            Ok(volumetric_terms(b, &sp)
+                .into_iter()
+                .map(|(local, k)| {
+                    let dofs = local
+                        .iter()
+                        .map(|&d| map.global(bi, d / 2, d % 2))
+                        .collect();
+                    (dofs, k)
+                })
+                .collect())
+        })
+        .collect::<Result<_>>()?;
+    let volumetric = &volumetric;
     chunks
         .par_iter()
         .zip(
@@ -431,6 +845,35 @@ pub fn stiffness_matrix(
                     for (bl, fb) in free.iter().enumerate() {
                         if fb.is_none() {
                             lift[i - ch.cols[0]] += ke[(a, bl)] * map.prescribed(dofs[bl]);
+                        }
+                    }
+                }
+            }
+            // the mixed formulation's volumetric terms, one per pressure
+            // function, into the columns this task owns
+            for (dofs, k) in &volumetric[ch.body] {
+                let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
+                let owned = |f: &Option<usize>| f.filter(|&j| j >= ch.cols[0] && j < ch.cols[1]);
+                if !free.iter().any(|f| owned(f).is_some()) {
+                    continue;
+                }
+                for (bl, fb) in free.iter().enumerate() {
+                    let Some(j) = owned(fb) else { continue };
+                    let rows = &row_idx_ref[col_ptr_ref[j]..col_ptr_ref[j + 1]];
+                    let mut at = 0;
+                    for (a, fa) in free.iter().enumerate() {
+                        let Some(i) = *fa else { continue };
+                        while rows[at] < i {
+                            at += 1;
+                        }
+                        vals[col_ptr_ref[j] - base + at] += k[(a, bl)];
+                    }
+                }
+                for (a, fa) in free.iter().enumerate() {
+                    let Some(i) = owned(fa) else { continue };
+                    for (bl, fb) in free.iter().enumerate() {
+                        if fb.is_none() {
+                            lift[i - ch.cols[0]] += k[(a, bl)] * map.prescribed(dofs[bl]);
                         }
                     }
                 }
@@ -615,7 +1058,8 @@ pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<
 }
 
 /// Strain (Voigt, engineering shear) and stress of body `body` at (ξ, η)
-/// for the full displacement vector `u`.
+/// for the full displacement vector `u`; the stress is that of the body's
+/// formulation ([`ElementStress`]).
 pub fn strain_stress(
     bodies: &[Body],
     map: &DofMap,
@@ -625,10 +1069,11 @@ pub fn strain_stress(
     eta: f64,
 ) -> Result<([f64; 3], [f64; 3])> {
     let b = &bodies[body];
-    let e = &b.space.elements[b.space.locate(xi, eta)];
+    let ei = b.space.locate(xi, eta);
+    let e = &b.space.elements[ei];
     let shape = b.space.shape(e, xi, eta)?;
-    let eps = strain_at(map, u, body, &e.cps, &shape);
-    Ok((eps, b.material.stress(eps)))
+    let (sig, _) = ElementStress::new(b, ei)?.stress(map, u, body, &shape, xi, eta);
+    Ok((strain_at(map, u, body, &e.cps, &shape), sig))
 }
 
 /// ε = Σ_A B_A u_A at a point with known shape functions.

@@ -40,6 +40,7 @@ chapters! {
     error_vs_time => "error_vs_time.md",
     solvers => "solvers.md",
     stability => "stability.md",
+    incompressibility => "incompressibility.md",
     penalty_study => "penalty_study.md",
     scenes => "scenes.md",
     reliability => "reliability.md",

@@ -7,16 +7,18 @@
 //! free DOFs and no large numbers ever enter the matrix.
 
 use crate::error::{Error, Result};
-use crate::material::Material;
+use crate::material::{Formulation, Material};
 use crate::nurbs::Side;
 use crate::space::Space;
 
-/// One elastic body: a discretised patch and its material.
+/// One elastic body: a discretised patch, its material and how its stress
+/// is discretised.
 #[derive(Clone, Debug)]
 pub struct Body {
     pub name: String,
     pub space: Space,
     pub material: Material,
+    pub formulation: Formulation,
 }
 
 const FIXED: usize = usize::MAX;

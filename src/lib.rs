@@ -18,6 +18,7 @@ pub mod linsolve;
 pub mod material;
 pub mod nurbs;
 pub mod post;
+pub mod pressure;
 pub mod problem;
 pub mod quadrature;
 pub mod report;

@@ -33,7 +33,7 @@ use crate::contact::{contact_points, ContactPair, Master, Nitsche};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
-use crate::material::Material;
+use crate::material::{Formulation, Material, Plane};
 use crate::nurbs::{KnotVector, NurbsPatch, Side};
 use crate::post::{self, PenaltyStability, PressureProfile};
 use crate::problem::Problem;
@@ -104,6 +104,13 @@ pub struct BodySpec {
     #[serde(default)]
     pub refine: Option<RefineSpec>,
     pub material: Material,
+    /// `"displacement"` (default, the paper's), `"mixed"` (locking-free, for
+    /// nearly incompressible plane-strain bodies) or `"local_mixed"` (its
+    /// element-local variant, which still locks): see
+    /// [`crate::material::Formulation`]; the mixed ones are refused in plane
+    /// stress.
+    #[serde(default)]
+    pub formulation: Formulation,
     /// Gauss points per direction; default p + 1.
     #[serde(default)]
     pub quadrature: Option<usize>,
@@ -1019,6 +1026,13 @@ impl Scene {
                 r.validate(&format!("{f}.refine"), b.geometry.degree())?;
             }
             b.material.validate(&format!("{f}.material"))?;
+            if b.formulation != Formulation::Displacement && b.material.plane != Plane::Strain {
+                return Err(Error::invalid(
+                    format!("{f}.formulation"),
+                    format!("{:?}", b.formulation.name()),
+                    "the mixed formulation is for plane strain; plane stress does not lock (σ_zz = 0 frees the thickness), so use formulation = \"displacement\"",
+                ));
+            }
             if let Some(q) = b.quadrature {
                 in_range(format!("{f}.quadrature"), q, 1, 30)?;
                 let p = b.degree();
@@ -1397,6 +1411,7 @@ impl Scene {
                 name: b.name.clone(),
                 space,
                 material: b.material,
+                formulation: b.formulation,
             });
         }
         let mut dofs = DofMap::builder(&bodies);

@@ -75,6 +75,7 @@ fn patch_test_on(patch: NurbsPatch, plane: Plane, quad_order: Option<usize>) -> 
         name: "patch".into(),
         space,
         material,
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let mut builder = DofMap::builder(&bodies);
     for side in Side::ALL {
@@ -150,6 +151,7 @@ fn element_stiffness_has_three_rigid_modes() {
             name: "free".into(),
             space,
             material,
+            formulation: iga_contact::material::Formulation::Displacement,
         };
         for e in [0, 5] {
             let ke = assembly::element_stiffness(&body, e).unwrap();
@@ -191,6 +193,7 @@ fn body_force_integrates_to_force_times_area() {
             name: "disk".into(),
             space: Space::new(patch, quad).unwrap(),
             material: Material::new(2e7, 0.1, Plane::Strain).unwrap(),
+            formulation: iga_contact::material::Formulation::Displacement,
         }];
         let map = DofMap::builder(&bodies).build();
         let f =
@@ -221,6 +224,7 @@ fn pressure_on_a_straight_side_integrates_to_pressure_times_length() {
         name: "trapezoid".into(),
         space: Space::new(patch, None).unwrap(),
         material: Material::new(1.0, 0.2, Plane::Stress).unwrap(),
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let map = DofMap::builder(&bodies).build();
     let p = 7.5;
@@ -257,6 +261,7 @@ fn pressure_on_a_straight_side_integrates_to_pressure_times_length() {
         name: "block".into(),
         space: Space::new(patch, None).unwrap(),
         material: Material::new(1.0, 0.2, Plane::Stress).unwrap(),
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let map = DofMap::builder(&bodies).build();
     let f = assembly::load_vector(

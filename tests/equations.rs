@@ -126,6 +126,7 @@ fn disk_over_a_curved_master() -> (NurbsCurve, Vec<iga_contact::contact::Contact
         name: "disk".into(),
         space: Space::new(patch, None).unwrap(),
         material: common::scene("hertz.toml").bodies[0].material,
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let map = DofMap::builder(&bodies).build();
     let mut pair = ContactPair::new(0, Side::EtaMin, Master::Rigid(master.clone()));

@@ -34,6 +34,7 @@ fn block(gap: f64, elements: [usize; 2], pressure: f64) -> Problem {
         name: "block".into(),
         space: iga_contact::space::Space::new(patch, None).unwrap(),
         material: Material::new(1e9, 0.3, Plane::Strain).unwrap(),
+        formulation: iga_contact::material::Formulation::Displacement,
     }];
     let mut b = DofMap::builder(&bodies);
     b.fix_side(0, Side::XiMin, 0, 0.0).unwrap();

@@ -48,11 +48,13 @@ fn model() -> (Vec<Body>, DofMap) {
             name: "disk".into(),
             space: Space::new(disk, None).unwrap(),
             material: Material::new(1.0, 0.3, Plane::Strain).unwrap(),
+            formulation: iga_contact::material::Formulation::Displacement,
         },
         Body {
             name: "block".into(),
             space: Space::new(block, None).unwrap(),
             material: Material::new(20.0, 0.2, Plane::Stress).unwrap(),
+            formulation: iga_contact::material::Formulation::Displacement,
         },
     ];
     let map = DofMap::builder(&bodies).build();

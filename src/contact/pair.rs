@@ -6,10 +6,14 @@ use super::penalty::{
     empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
 };
 use super::projection::{along_normal, closest_point, Projection};
+use crate::assembly::ElementStress;
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::Formulation;
 use crate::nurbs::{NurbsCurve, Side};
+use crate::pressure::SplinePressure;
 use crate::quadrature;
+use std::sync::Arc;
 
 /// What the slave side is pressed against.
 #[derive(Clone, Debug)]
@@ -245,6 +249,11 @@ fn one_side(
         }
     };
     let n_gauss = pair.nitsche.points(degree);
+    // the slave's pressure space, once per side (mixed formulation)
+    let pressure = match slave.formulation {
+        Formulation::Mixed => Some(Arc::new(SplinePressure::new(slave)?)),
+        _ => None,
+    };
     let slave_curve = slave.space.patch.side_curve(pair.slave_side);
     let cuts = match pair.nitsche.integration {
         Integration::Gauss => Vec::new(),
@@ -268,14 +277,29 @@ fn one_side(
                     t,
                     w: scale * w,
                 };
-                if let Some(cp) =
-                    make_point(ip, pair, role, bodies, map, &master, point, young, degree)?
-                {
+                if let Some(cp) = make_point(
+                    ip,
+                    pair,
+                    role,
+                    bodies,
+                    map,
+                    &master,
+                    point,
+                    young,
+                    degree,
+                    pressure.as_ref(),
+                )? {
                     out.push(cp);
                 }
             }
         }
-        set_trace_constant(slave, &be, &pair.nitsche, &mut out[first..])?;
+        set_trace_constant(
+            slave,
+            &be,
+            &pair.nitsche,
+            pressure.as_deref(),
+            &mut out[first..],
+        )?;
     }
     Ok(())
 }
@@ -294,23 +318,29 @@ fn set_trace_constant(
     slave: &Body,
     be: &crate::space::BoundaryElement,
     nitsche: &Nitsche,
+    pressure: Option<&SplinePressure>,
     points: &mut [ContactPoint],
 ) -> Result<()> {
     if points.is_empty() {
         return Ok(());
     }
-    let stiffness = crate::assembly::element_stiffness(slave, be.element)?;
     let el = &slave.space.elements[be.element];
     let cps: Vec<[f64; 2]> = el
         .cps
         .iter()
         .map(|&a| slave.space.patch.points[a])
         .collect();
-    let c = trace_constant(
-        &stiffness,
-        &rigid_modes(&cps),
-        points.iter().map(|cp| (cp.weight, cp.sn.as_slice())),
-    )?;
+    let c = match pressure {
+        None => {
+            let stiffness = crate::assembly::element_stiffness(slave, be.element)?;
+            trace_constant(
+                &stiffness,
+                &rigid_modes(&cps),
+                points.iter().map(|cp| (cp.weight, cp.sn.as_slice())),
+            )?
+        }
+        Some(sp) => mixed_trace_constant(slave, be, sp, &cps, points)?,
+    };
     if nitsche.penalty == Penalty::Sharp && !c.is_finite() {
         return Err(Error::invalid(
             "nitsche.penalty",
@@ -328,6 +358,64 @@ fn set_trace_constant(
         }
     }
     Ok(())
+}
+
+/// The trace constant of a slave element of the mixed formulation. Its
+/// energy a(v, v) = Σ_e [∫_e dev + κ Σ_i (∫_e N̂_i) t_i²] with t_i = ĝ_i·v/m̂_i
+/// splits exactly into element parts, and σ_n on the element depends on the
+/// element's own DOFs v_e and on the t_i of its pressure functions, which
+/// the DOFs of the neighbouring elements set independently of v_e. So the
+/// constant is that of the energy diag(K_dev,e, κ diag(∫_e N̂_i)) over
+/// (v_e, t), with σ_n(v) = s_dev·v_e + κ Σ_i N̂_i(x) t_i.
+fn mixed_trace_constant(
+    slave: &Body,
+    be: &crate::space::BoundaryElement,
+    sp: &SplinePressure,
+    cps: &[[f64; 2]],
+    points: &[ContactPoint],
+) -> Result<f64> {
+    let space = &slave.space;
+    let el = &space.elements[be.element];
+    let n = 2 * el.cps.len();
+    let active = sp.on_element(be.element);
+    let kappa = slave.material.bulk_modulus();
+    let mu = slave.material.shear_modulus();
+    let dev = crate::assembly::element_stiffness(slave, be.element)?;
+    let k = n + active.len();
+    let mut energy = nalgebra::DMatrix::zeros(k, k);
+    energy.view_mut((0, 0), (n, n)).copy_from(&dev);
+    for (j, &(_, me)) in active.iter().enumerate() {
+        energy[(n + j, n + j)] = kappa * me;
+    }
+    let mut rigid = nalgebra::DMatrix::zeros(k, 3);
+    rigid.view_mut((0, 0), (n, 3)).copy_from(&rigid_modes(cps));
+    let mut rows = Vec::with_capacity(points.len());
+    for cp in points {
+        let (shape, _, _) = space.side_shape(be, cp.t)?;
+        let q = space.patch.side_point(be.side, cp.t);
+        let nn = cp.normal;
+        let m = [nn[0] * nn[0], nn[1] * nn[1], 2.0 * nn[0] * nn[1]];
+        let mut s = vec![0.0; k];
+        for (a, g) in shape.grad.iter().enumerate() {
+            for c in 0..2 {
+                // −(2μ/3) tr ε enters σ_xx and σ_yy, so σ_n with m₀ + m₁ = 1
+                s[2 * a + c] -= 2.0 * mu / 3.0 * g[c];
+            }
+            s[2 * a] += m[0] * 2.0 * mu * g[0] + m[2] * mu * g[1];
+            s[2 * a + 1] += m[1] * 2.0 * mu * g[1] + m[2] * mu * g[0];
+        }
+        for (i, v) in sp.basis(q[0], q[1]) {
+            if let Some(j) = active.iter().position(|e| e.0 == i) {
+                s[n + j] += kappa * v;
+            }
+        }
+        rows.push((cp.weight, s));
+    }
+    trace_constant(
+        &energy,
+        &rigid,
+        rows.iter().map(|(w, s)| (*w, s.as_slice())),
+    )
 }
 
 /// Words for the slave side of a pair, for messages.
@@ -376,6 +464,7 @@ fn make_point(
     Sample { be, t, w }: Sample,
     young: f64,
     degree: usize,
+    pressure: Option<&Arc<SplinePressure>>,
 ) -> Result<Option<ContactPoint>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
@@ -442,26 +531,47 @@ fn make_point(
         pair.nitsche.penalty_factor,
     );
 
-    // σ_n = mᵀ D B u with m = (n_x², n_y², 2 n_x n_y) in Voigt notation.
-    let d = slave.material.d_matrix();
+    // σ_n = mᵀ σ(u) with m = (n_x², n_y², 2 n_x n_y) in Voigt notation and
+    // σ the stress of the slave's formulation; for the mixed one θ̄ reaches
+    // the control points of the neighbouring elements under the element's
+    // pressure functions, which follow the element's own in `dofs`
     let m = [
         normal[0] * normal[0],
         normal[1] * normal[1],
         2.0 * normal[0] * normal[1],
     ];
-    let q: Vec<f64> = (0..3)
-        .map(|j| (0..3).map(|i| m[i] * d[i][j]).sum())
-        .collect();
     let el = &space.elements[be.element];
-    let mut dofs = map.element_dofs(pair.slave, &el.cps);
-    let mut sn = Vec::with_capacity(dofs.len());
+    let (mut dofs, mut sn) = match slave.formulation {
+        Formulation::Displacement => {
+            let dofs = map.element_dofs(pair.slave, &el.cps);
+            let mut sn = Vec::with_capacity(dofs.len());
+            let d = slave.material.d_matrix();
+            let q: Vec<f64> = (0..3)
+                .map(|j| (0..3).map(|i| m[i] * d[i][j]).sum())
+                .collect();
+            for g in &shape.grad {
+                sn.push(q[0] * g[0] + q[2] * g[1]);
+                sn.push(q[1] * g[1] + q[2] * g[0]);
+            }
+            (dofs, sn)
+        }
+        Formulation::Mixed | Formulation::LocalMixed => {
+            let q = space.patch.side_point(be.side, t);
+            let stress = ElementStress::with_pressure(slave, be.element, pressure)?;
+            let rows = stress.rows(&shape, q[0], q[1]);
+            let dofs = map.element_dofs(pair.slave, stress.cps());
+            let sn = (0..dofs.len())
+                .map(|k| m[0] * rows[0][k] + m[1] * rows[1][k] + m[2] * rows[2][k])
+                .collect();
+            (dofs, sn)
+        }
+    };
     let mut jn = Vec::with_capacity(dofs.len());
-    for (a, g) in shape.grad.iter().enumerate() {
-        sn.push(q[0] * g[0] + q[2] * g[1]);
-        sn.push(q[1] * g[1] + q[2] * g[0]);
-        jn.push(shape.r[a] * normal[0]);
-        jn.push(shape.r[a] * normal[1]);
+    for r in &shape.r {
+        jn.push(r * normal[0]);
+        jn.push(r * normal[1]);
     }
+    jn.resize(dofs.len(), 0.0);
     if let Some((mbody, cps, r)) = master_part {
         for (b, &cp) in cps.iter().enumerate() {
             if r[b] == 0.0 {

@@ -98,6 +98,7 @@ pub const PROGRAMS: &[Program] = &[
     program("penalty", "penalty", Cost::Quick),
     program("penalty_contrast", "penalty_contrast", Cost::Heavy),
     program("stability", "stability", Cost::Quick),
+    program("incompressibility", "incompressibility", Cost::Quick),
     // reads the facts of taylor, hertz, iga_vs_fem and penalty
     program("claims", "claims", Cost::Quick),
     program("scenes", "scenes", Cost::Quick),

@@ -3,7 +3,7 @@
 //! as the polylines and cells of [`super::plot`].
 
 use super::plot::{FieldCell, LineKind, Polyline};
-use crate::assembly::{displacement_at, strain_at};
+use crate::assembly::displacement_at;
 use crate::error::Result;
 use crate::nurbs::NurbsPatch;
 use crate::problem::Problem;
@@ -76,7 +76,15 @@ pub fn field_cells(
     let mut cells = Vec::new();
     for (bi, body) in problem.bodies.iter().enumerate() {
         let space = &body.space;
-        for e in &space.elements {
+        let pressure = match body.formulation {
+            crate::material::Formulation::Mixed => Some(std::sync::Arc::new(
+                crate::pressure::SplinePressure::new(body)?,
+            )),
+            _ => None,
+        };
+        for (ei, e) in space.elements.iter().enumerate() {
+            let stress_of =
+                crate::assembly::ElementStress::with_pressure(body, ei, pressure.as_ref())?;
             let [[xa, xb], [ya, yb]] = e.range;
             let param = |s: f64, t: f64| (xa + (xb - xa) * s, ya + (yb - ya) * t);
             let corner = |s: f64, t: f64| -> [f64; 2] {
@@ -106,9 +114,7 @@ pub fn field_cells(
                         body: bi,
                         x: shape.x,
                         displacement: displacement_at(map, full, bi, &e.cps, &shape),
-                        stress: body
-                            .material
-                            .stress(strain_at(map, full, bi, &e.cps, &shape)),
+                        stress: stress_of.stress(map, full, bi, &shape, xi, eta).0,
                     };
                     cells.push(FieldCell {
                         corners: [

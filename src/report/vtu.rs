@@ -14,12 +14,15 @@
 //! fields on a grid inside every element and emits linear quads, which every
 //! reader understands and which resolve the field as finely as asked.
 
-use crate::assembly::{displacement_at, strain_at};
+use crate::assembly::{displacement_at, ElementStress};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
+use crate::material::Formulation;
+use crate::pressure::SplinePressure;
 use crate::space::{Element, Shape, Space};
 use std::fmt::Write as _;
 use std::path::Path;
+use std::sync::Arc;
 
 /// VTK cell type of the linear quadrilateral.
 pub const VTK_QUAD: u8 = 9;
@@ -460,7 +463,14 @@ pub fn sample_bodies(
 
     for (bi, body) in bodies.iter().enumerate() {
         let space = &body.space;
-        for e in &space.elements {
+        // the stress of the body's formulation (mixed: one pressure space
+        // per body, shared by its elements)
+        let pressure = match body.formulation {
+            Formulation::Mixed => Some(Arc::new(SplinePressure::new(body)?)),
+            _ => None,
+        };
+        for (ei, e) in space.elements.iter().enumerate() {
+            let stress_of = ElementStress::with_pressure(body, ei, pressure.as_ref())?;
             let [[xa, xb], [ya, yb]] = e.range;
             let det_ref = space
                 .shape(e, 0.5 * (xa + xb), 0.5 * (ya + yb))
@@ -488,9 +498,7 @@ pub fn sample_bodies(
                     let shape = sample_shape(space, e, xi, eta, det_ref)
                         .map_err(|err| Error::Geometry(format!("body `{}`: {err}", body.name)))?;
                     let u = displacement_at(map, u_full, bi, &e.cps, &shape);
-                    let eps = strain_at(map, u_full, bi, &e.cps, &shape);
-                    let sig = body.material.stress(eps);
-                    let szz = body.material.stress_zz(sig);
+                    let (sig, szz) = stress_of.stress(map, u_full, bi, &shape, xi, eta);
                     mesh.points.push([shape.x[0], shape.x[1], 0.0]);
                     disp.extend([u[0], u[1], 0.0]);
                     stress.extend(sig);

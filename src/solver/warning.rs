@@ -12,7 +12,7 @@ use crate::contact::penalty::{first_touch, stability_of, PenaltyStability};
 use crate::contact::projection::closest_point;
 use crate::contact::{ContactPair, ContactPoint, Master, Modulus, Penalty, Role};
 use crate::dofs::Body;
-use crate::material::Plane;
+use crate::material::{Formulation, Plane};
 use crate::nurbs::Side;
 use crate::problem::Problem;
 
@@ -141,10 +141,12 @@ pub enum Warning {
         contrast: f64,
     },
     /// Body `body` is nearly incompressible (ν above [`LOCKING_POISSON`]) in
-    /// plane strain on a mesh too coarse for its displacement formulation
-    /// ([`LOCKING`]).
+    /// plane strain on a mesh too coarse for its formulation ([`LOCKING`]).
+    /// The local mixed formulation is judged by the same indicator (it still
+    /// locks); the mixed one is not judged (it does not).
     NearlyIncompressible {
         body: String,
+        formulation: Formulation,
         poisson: f64,
         indicator: f64,
         /// The fewest elements per direction that bring the indicator to
@@ -298,12 +300,24 @@ impl std::fmt::Display for Warning {
             ),
             Warning::NearlyIncompressible {
                 body,
+                formulation: Formulation::Displacement,
                 poisson,
                 indicator,
                 elements,
             } => write!(
                 f,
-                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: refine {body:?} to at least {elements} elements in each direction (no mixed formulation is available)"
+                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?} (its continuous pressure does not lock), or refine it to at least {elements} elements in each direction"
+            ),
+            Warning::NearlyIncompressible {
+                body,
+                formulation: Formulation::Mixed | Formulation::LocalMixed,
+                // (never raised for `Mixed`; the words fit the local one)
+                poisson,
+                indicator,
+                elements,
+            } => write!(
+                f,
+                "body {body:?}: ν = {poisson} in plane strain locks its formulation on its mesh (a pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?}, or refine it to at least {elements} elements in each direction"
             ),
             Warning::ZoneAtSideEnd {
                 pair,
@@ -467,7 +481,12 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
 /// above [`LOCKING`].
 pub fn locking(b: &Body) -> Option<Warning> {
     let nu = b.material.poisson;
-    if b.material.plane != Plane::Strain || nu <= LOCKING_POISSON {
+    // the mixed formulation's continuous pressure does not lock (chapter
+    // "Near incompressibility")
+    if b.material.plane != Plane::Strain
+        || nu <= LOCKING_POISSON
+        || b.formulation == Formulation::Mixed
+    {
         return None;
     }
     let lambda_over_mu = 2.0 * nu / (1.0 - 2.0 * nu);
@@ -476,6 +495,7 @@ pub fn locking(b: &Body) -> Option<Warning> {
     let indicator = lambda_over_mu / fewest.powi(3);
     (indicator > LOCKING).then(|| Warning::NearlyIncompressible {
         body: b.name.clone(),
+        formulation: b.formulation,
         poisson: nu,
         indicator,
         elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
