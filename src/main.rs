@@ -43,12 +43,12 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Refuse the run if its estimated peak memory exceeds this (e.g.
-        /// 8G, 512M) [default: 75% of the physical memory].
+        /// 8G, 512M) [default: all of the available memory (MemAvailable), or 80% of ulimit -v].
         #[arg(long, value_name = "SIZE")]
         max_memory: Option<String>,
     },
     /// Validate a scene, estimate its memory, and check its geometry,
-    /// contact points and supports, without assembling or solving.
+    /// contact points (element stiffnesses for C_T) and supports, without assembling the global system or solving.
     Check {
         /// The scene file (TOML).
         scene: PathBuf,
@@ -62,8 +62,9 @@ enum Command {
         /// Run only the chapter program of this name.
         #[arg(long)]
         only: Option<String>,
-        /// Run the heavy programs too (the solver scaling benchmark and the
-        /// reliability campaign: many minutes and gigabytes).
+        /// Run the heavy programs too (getfem_peer, solver_scaling,
+        /// penalty_contrast, reliability, answers, memory_table: many minutes
+        /// and gigabytes).
         #[arg(long)]
         all: bool,
     },

@@ -83,7 +83,8 @@ const fn program(example: &'static str, chapter: &'static str, cost: Cost) -> Pr
     }
 }
 
-/// Every chapter program, in the order of the book.
+/// Every chapter program, in the order `reproduce` runs them (a program
+/// after those whose facts it reads).
 pub const PROGRAMS: &[Program] = &[
     program("formulation", "formulation", Cost::Quick),
     program("lame", "lame", Cost::Quick),
