@@ -16,7 +16,7 @@
 use super::guard::Guard;
 use super::history::Event;
 use super::system::{LinearSolve, System};
-use super::Start;
+use super::{Growth, Start};
 use crate::contact::nitsche::heaviside;
 use crate::error::Result;
 use crate::linsolve::{Factor, Factoriser, Method};
@@ -83,12 +83,101 @@ pub(crate) struct Built<'p> {
     pub activity: Vec<f64>,
     /// Per point: forced active by the guard (empty: none).
     pub forced: Vec<bool>,
+    /// The points with P ≤ 0 left out by [`halve_growth`].
+    pub dropped: Vec<usize>,
 }
 
 impl Built<'_> {
     pub fn guarded(&self) -> bool {
         self.forced.iter().any(|&f| f)
     }
+
+    /// The residual a step with this kernel follows from `u` (residual
+    /// `r`): that of the kernel's own active set, the guard's points under
+    /// the tied law and the dropped points open, so that a full step lands
+    /// on the root of the kernel's linear piece.
+    pub fn drive(&self, sys: &dyn System<'_>, u: &[f64], r: &[f64]) -> Vec<f64> {
+        let mut drive = if self.guarded() {
+            sys.residual_forced(u, &self.forced).0
+        } else {
+            r.to_vec()
+        };
+        if !self.dropped.is_empty() {
+            for (d, e) in drive.iter_mut().zip(sys.released(u, &self.dropped)) {
+                *d += e;
+            }
+        }
+        drive
+    }
+}
+
+/// The contact points of each side of each pair, in the order of the
+/// slave parameter t: the lines along which a contact zone is a run of
+/// consecutive active points.
+pub(crate) fn lines(problem: &Problem) -> Vec<Vec<usize>> {
+    let mut keys: Vec<(usize, bool)> = Vec::new();
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    for (q, cp) in problem.points.iter().enumerate() {
+        let key = (cp.pair, cp.role == crate::contact::Role::Slave);
+        match keys.iter().position(|k| *k == key) {
+            Some(i) => out[i].push(q),
+            None => {
+                keys.push(key);
+                out.push(vec![q]);
+            }
+        }
+    }
+    for line in &mut out {
+        line.sort_by(|&a, &b| problem.points[a].t.total_cmp(&problem.points[b].t));
+    }
+    out
+}
+
+/// The active set `next` with every run of points it adds (along a line)
+/// next to exactly one active run of `kernel` cut to the half (rounded up)
+/// nearest that run; added runs that start a new zone or fill a hole
+/// between two active runs are kept whole, and releases are kept.
+///
+/// Why: a full semismooth Newton step from the kernel's active set A lands
+/// on the root of A's linear piece. Where A's zone is too short, that root
+/// penetrates beyond its edge over about as far again as the zone is short
+/// (measured on the disk on the block: from 5 points short, 5 too many), so
+/// the edge of the root's zone lies about halfway; where A's zone is too
+/// long, the root only pulls at A's last point or two, so a zone entered
+/// from above shrinks a point or two per step (the 20–30 iterations of the
+/// disk on the block). Halving the growth keeps the iteration below the
+/// edge and bisects towards it. A set equal to its own next set, a root's,
+/// is left alone.
+pub(crate) fn halve_growth(kernel: &[bool], next: &[bool], lines: &[Vec<usize>]) -> Vec<bool> {
+    let mut out = next.to_vec();
+    for line in lines {
+        let n = line.len();
+        let added = |i: usize| next[line[i]] && !kernel[line[i]];
+        let mut i = 0;
+        while i < n {
+            if !added(i) {
+                i += 1;
+                continue;
+            }
+            let start = i;
+            while i < n && added(i) {
+                i += 1;
+            }
+            let end = i;
+            let keep = (end - start).div_ceil(2);
+            let before = start > 0 && kernel[line[start - 1]];
+            let after = end < n && kernel[line[end]];
+            let dropped = match (before, after) {
+                (true, false) => start + keep..end,
+                (false, true) => start..end - keep,
+                _ => 0..0,
+            };
+            for k in dropped {
+                out[line[k]] = false;
+            }
+        }
+    }
+    out
 }
 
 /// The kernels of one solve: the tied kernel (17) and secant kernels (18)
@@ -99,15 +188,27 @@ pub(crate) struct Kernels<'s, 'p> {
     guard: Guard,
     pub factorisations: usize,
     built: Vec<Vec<bool>>,
+    /// The contact lines ([`lines`]).
+    lines: Vec<Vec<usize>>,
+    /// Whether the secant kernels halve the growth ([`halve_growth`]).
+    halved: bool,
 }
 
 impl<'s, 'p> Kernels<'s, 'p> {
-    pub fn new(sys: &'s mut dyn System<'p>, problem: &Problem) -> Self {
+    /// The kernels of one start: `growth` resolved for `start`.
+    pub fn new(
+        sys: &'s mut dyn System<'p>,
+        problem: &Problem,
+        growth: Growth,
+        start: Start,
+    ) -> Self {
         Self {
             sys,
             guard: Guard::new(problem),
             factorisations: 0,
             built: Vec::new(),
+            lines: lines(problem),
+            halved: growth.halved(start),
         }
     }
 
@@ -126,6 +227,7 @@ impl<'s, 'p> Kernels<'s, 'p> {
         &mut self,
         h: Vec<f64>,
         forced: Vec<bool>,
+        dropped: Vec<usize>,
         events: &mut Vec<Event>,
     ) -> Result<Built<'p>> {
         self.factorisations += 1;
@@ -134,20 +236,41 @@ impl<'s, 'p> Kernels<'s, 'p> {
             factor: self.sys.factor(&h, events)?,
             activity: h,
             forced,
+            dropped,
         })
     }
 
     /// The tied kernel (17): every point active.
     pub fn tied(&mut self, events: &mut Vec<Event>) -> Result<Built<'p>> {
-        self.build(vec![1.0; self.guard.points()], Vec::new(), events)
+        self.build(
+            vec![1.0; self.guard.points()],
+            Vec::new(),
+            Vec::new(),
+            events,
+        )
     }
 
     /// The secant kernel (18) at `u`. If its active set does not hold a
     /// floating body, the guard adds the nearest points
-    /// ([`Event::FloatingGuard`]).
-    pub fn secant(&mut self, u: &[f64], events: &mut Vec<Event>) -> Result<Built<'p>> {
-        let p = self.sys.p_values(u);
+    /// ([`Event::FloatingGuard`]). With halved growth and `full` (u is a
+    /// full step from the last kernel), the points the active set adds are
+    /// cut as [`halve_growth`] says.
+    pub fn secant(&mut self, u: &[f64], full: bool, events: &mut Vec<Event>) -> Result<Built<'p>> {
+        let mut p = self.sys.p_values(u);
         let mut h: Vec<f64> = p.iter().map(|&v| heaviside(v)).collect();
+        let mut dropped = Vec::new();
+        if let (true, true, Some(last)) = (self.halved, full, self.built.last()) {
+            let next: Vec<bool> = h.iter().map(|&v| v > 0.5).collect();
+            let cut = halve_growth(last, &next, &self.lines);
+            for (q, (&c, &n)) in cut.iter().zip(&next).enumerate() {
+                if n && !c {
+                    h[q] = 0.0;
+                    dropped.push(q);
+                    // for the guard, an open point nearest the obstacle
+                    p[q] = p[q].abs().max(f64::MIN_POSITIVE);
+                }
+            }
+        }
         let chosen = self.guard.select(&p);
         let mut forced = Vec::new();
         if !chosen.is_empty() {
@@ -158,7 +281,8 @@ impl<'s, 'p> Kernels<'s, 'p> {
                 forced[q] = true;
             }
         }
-        self.build(h, forced, events)
+        dropped.retain(|&q| h[q] < 0.5);
+        self.build(h, forced, dropped, events)
     }
 
     /// The first kernel of `start` at `u` (residual `r`). For
@@ -177,7 +301,7 @@ impl<'s, 'p> Kernels<'s, 'p> {
                 if self.balance(u, r) {
                     *r = self.sys.residual_forced(u, &[]).0;
                 }
-                self.secant(u, events)
+                self.secant(u, false, events)
             }
         }
     }

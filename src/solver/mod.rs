@@ -66,6 +66,34 @@ pub enum Start {
     Secant,
 }
 
+/// How a secant kernel takes the points its iterate adds to the active
+/// set ([`kernel::halve_growth`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Growth {
+    /// Halved after the balanced secant start, full after the tied start
+    /// (which enters every zone from above, where halving has nothing to
+    /// cut, and is the paper's iteration).
+    #[default]
+    Auto,
+    /// Every point with P ≤ 0: the plain semismooth Newton set.
+    Full,
+    /// A run of added points next to one active run is cut to its half
+    /// nearest that run, after each full step.
+    Halved,
+}
+
+impl Growth {
+    /// Whether the kernels of a start from `start` halve the growth.
+    pub fn halved(self, start: Start) -> bool {
+        match self {
+            Growth::Auto => start == Start::Secant,
+            Growth::Full => false,
+            Growth::Halved => true,
+        }
+    }
+}
+
 /// When steps are damped by the backtracking line search on ‖R‖.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -155,6 +183,8 @@ pub struct SolverOptions {
     pub space: IterationSpace,
     /// What a stalled damped iteration does.
     pub on_stall: OnStall,
+    /// How the secant kernels take the points added to the active set.
+    pub growth: Growth,
 }
 
 impl Default for SolverOptions {
@@ -181,6 +211,7 @@ impl Default for SolverOptions {
             correct_on: CorrectOn::ActiveSet,
             space: IterationSpace::Auto,
             on_stall: OnStall::RestartTied,
+            growth: Growth::Auto,
         }
     }
 }
@@ -206,6 +237,7 @@ impl SolverOptions {
             correct_on: CorrectOn::Growth,
             space: IterationSpace::Body,
             on_stall: OnStall::Fail,
+            growth: Growth::Full,
             ..Self::default()
         }
     }

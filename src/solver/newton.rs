@@ -48,8 +48,9 @@ pub(crate) fn solve(
             stalled: false,
         });
     }
-    let mut kernels = Kernels::new(sys, problem);
+    let mut kernels = Kernels::new(sys, problem, opts.growth, start);
     let mut cycled = false;
+    let mut full = false;
     let first_row = tracker.history.len();
     loop {
         let mut events = Vec::new();
@@ -60,14 +61,10 @@ pub(crate) fn solve(
         let tangent = if first {
             kernels.start(start, &mut u, &mut r, &mut events)?
         } else {
-            kernels.secant(&u, &mut events)?
+            kernels.secant(&u, full, &mut events)?
         };
         cycled |= kernels.cycled();
-        let drive = if tangent.guarded() {
-            kernels.sys.residual_forced(&u, &tangent.forced).0
-        } else {
-            r.clone()
-        };
+        let drive = tangent.drive(&*kernels.sys, &u, &r);
         let dir = tangent.factor.solve(&drive)?;
         // the first step, and a guarded one (the rigid motion that closes
         // a gap), are taken in full
@@ -82,6 +79,7 @@ pub(crate) fn solve(
             events.push(Event::LineSearchCuts(step.cuts));
         }
         let du: Vec<f64> = dir.iter().map(|d| step.alpha * d).collect();
+        full = step.alpha == 1.0;
         u = step.u;
         r = step.r;
         let it = Iterate {
