@@ -8,7 +8,7 @@
 //! kernel factorisations of the default solver and of `kind = "newton"`.
 //!
 //! The last two columns are the solvers with `growth = "full"`: the
-//! iteration before the halved growth ([`iga_contact::solver::Growth`]).
+//! iteration before the cut growth ([`iga_contact::solver::Growth`]).
 //!
 //! `cargo run --release --example iterations -- history N FACTOR` prints
 //! the active points and relative residual of every iteration of both
@@ -20,6 +20,12 @@
 //! of A (what a full Newton step lands on from any iterate), from sets
 //! that differ from a root's by m points at the edge of its contact zone,
 //! and prints how many maps each start takes and which root it reaches.
+//!
+//! `cargo run --release --example iterations -- emulate N FACTOR K KEPT`
+//! runs that map from the first K points of the contact line with the
+//! growth of every map cut to the fraction KEPT (`cut_growth`; 1 is the
+//! plain map) and prints how many maps reach the root.
+//!
 //! Not a chapter program: its output is not in the book.
 
 use iga_contact::contact::nitsche::heaviside;
@@ -220,6 +226,49 @@ fn hist(n: usize, factor: f64) -> Result<()> {
     Ok(())
 }
 
+/// The map with the growth cut to `kept` ([`iga_contact::solver::kernel::cut_growth`])
+/// from the first `k0` points along the line: how many maps to the root,
+/// and the root's zones (start..end along t).
+fn emulate(n: usize, factor: f64, k0: usize, kept: f64) -> Result<()> {
+    let problem = disk_on_block(n, factor)?;
+    let trace = TraceProblem::new(&problem)?;
+    let m = Map { trace };
+    let lines = iga_contact::solver::kernel::lines(&problem);
+    let line = &lines[0];
+    let mut h = vec![false; problem.points.len()];
+    for &q in line.iter().take(k0) {
+        h[q] = true;
+    }
+    let runs = |h: &[bool]| -> String {
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < line.len() {
+            if h[line[i]] {
+                let s = i;
+                while i < line.len() && h[line[i]] {
+                    i += 1;
+                }
+                out.push(format!("{s}..{i}"));
+            } else {
+                i += 1;
+            }
+        }
+        out.join(",")
+    };
+    for k in 1..=40 {
+        let b = m.next(&h)?;
+        if b == h {
+            println!(
+                "{n}² factor {factor} from {k0}, kept {kept}: {k} maps to {}",
+                runs(&b)
+            );
+            break;
+        }
+        h = iga_contact::solver::kernel::cut_growth(&h, &b, &lines, kept);
+    }
+    Ok(())
+}
+
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let number = |k: usize, default: f64| -> Result<f64> {
@@ -230,12 +279,18 @@ fn main() -> Result<()> {
     };
     match args.first().map(String::as_str) {
         Some("map") => map(number(1, 32.0)? as usize, number(2, 20.0)?),
+        Some("emulate") => emulate(
+            number(1, 32.0)? as usize,
+            number(2, 20.0)?,
+            number(3, 10.0)? as usize,
+            number(4, iga_contact::solver::kernel::KEPT)?,
+        ),
         Some("history") => hist(number(1, 32.0)? as usize, number(2, 20.0)?),
         Some("ladder") | None => ladder(number(1, 256.0)? as usize),
         Some(other) => Err(Error::invalid(
             "mode",
             other,
-            "use `ladder`, `map` or `history`",
+            "use `ladder`, `map`, `history` or `emulate`",
         )),
     }
 }

@@ -83,7 +83,7 @@ pub(crate) struct Built<'p> {
     pub activity: Vec<f64>,
     /// Per point: forced active by the guard (empty: none).
     pub forced: Vec<bool>,
-    /// The points with P ≤ 0 left out by [`halve_growth`].
+    /// The points with P ≤ 0 left out by [`cut_growth`].
     pub dropped: Vec<usize>,
 }
 
@@ -114,7 +114,7 @@ impl Built<'_> {
 /// The contact points of each side of each pair, in the order of the
 /// slave parameter t: the lines along which a contact zone is a run of
 /// consecutive active points.
-pub(crate) fn lines(problem: &Problem) -> Vec<Vec<usize>> {
+pub fn lines(problem: &Problem) -> Vec<Vec<usize>> {
     let mut keys: Vec<(usize, bool)> = Vec::new();
     let mut out: Vec<Vec<usize>> = Vec::new();
     for (q, cp) in problem.points.iter().enumerate() {
@@ -133,22 +133,31 @@ pub(crate) fn lines(problem: &Problem) -> Vec<Vec<usize>> {
     out
 }
 
-/// The active set `next` with every run of points it adds (along a line)
-/// next to exactly one active run of `kernel` cut to the half (rounded up)
-/// nearest that run; added runs that start a new zone or fill a hole
-/// between two active runs are kept whole, and releases are kept.
+/// The active set `next` with every run of points it adds along a line
+/// next to exactly one zone (active run) of `kernel` cut to the fraction
+/// `kept` (rounded up, so at least one point) nearest that zone. Added runs
+/// that start a new zone or fill a hole between two zones are kept whole,
+/// and releases are kept.
 ///
 /// Why: a full semismooth Newton step from the kernel's active set A lands
-/// on the root of A's linear piece. Where A's zone is too short, that root
-/// penetrates beyond its edge over about as far again as the zone is short
-/// (measured on the disk on the block: from 5 points short, 5 too many), so
-/// the edge of the root's zone lies about halfway; where A's zone is too
-/// long, the root only pulls at A's last point or two, so a zone entered
-/// from above shrinks a point or two per step (the 20–30 iterations of the
-/// disk on the block). Halving the growth keeps the iteration below the
-/// edge and bisects towards it. A set equal to its own next set, a root's,
-/// is left alone.
-pub(crate) fn halve_growth(kernel: &[bool], next: &[bool], lines: &[Vec<usize>]) -> Vec<bool> {
+/// on the root of A's linear piece, so the undamped iteration is the map
+/// A ↦ {P(u(A)) ≤ 0}, and on the disk on the block (`examples/iterations.rs`,
+/// modes `map` and `emulate`) it is lopsided. From a zone too short, the
+/// root penetrates beyond its edge over about as far again as the zone is
+/// short (from 5 points short, 5 too many at factor 20; further at small
+/// penalties and from far below), so the edge the root wants lies a little
+/// less than halfway. From a zone too long, the root pulls only at its last
+/// point or two, often leaving islands of active points outside the zone,
+/// so a zone entered from above shrinks a point or two per step: the 20–40
+/// iterations of the disk on the block, whose balanced start lies below the
+/// root and whose first step overshoots to about twice it. Keeping 40 % of
+/// the growth keeps the iterates below each edge and closes on it
+/// geometrically; 50 % lands above it from the far-too-small starts of a
+/// stiff penalty (measured on 128², factor 20: 23 maps against 6), 33 %
+/// slows the approach from below (8–9 maps). A set equal to its own next
+/// set, a root's, is left alone, so the roots are those of the plain
+/// iteration.
+pub fn cut_growth(kernel: &[bool], next: &[bool], lines: &[Vec<usize>], kept: f64) -> Vec<bool> {
     let mut out = next.to_vec();
     for line in lines {
         let n = line.len();
@@ -164,7 +173,7 @@ pub(crate) fn halve_growth(kernel: &[bool], next: &[bool], lines: &[Vec<usize>])
                 i += 1;
             }
             let end = i;
-            let keep = (end - start).div_ceil(2);
+            let keep = ((end - start) as f64 * kept).ceil() as usize;
             let before = start > 0 && kernel[line[start - 1]];
             let after = end < n && kernel[line[end]];
             let dropped = match (before, after) {
@@ -180,6 +189,9 @@ pub(crate) fn halve_growth(kernel: &[bool], next: &[bool], lines: &[Vec<usize>])
     out
 }
 
+/// The fraction of an added run that [`cut_growth`] keeps.
+pub const KEPT: f64 = 0.4;
+
 /// The kernels of one solve: the tied kernel (17) and secant kernels (18)
 /// with the floating guard, counted, and the active sets they were built
 /// for (to detect a cycle).
@@ -190,8 +202,8 @@ pub(crate) struct Kernels<'s, 'p> {
     built: Vec<Vec<bool>>,
     /// The contact lines ([`lines`]).
     lines: Vec<Vec<usize>>,
-    /// Whether the secant kernels halve the growth ([`halve_growth`]).
-    halved: bool,
+    /// Whether the secant kernels cut the growth ([`cut_growth`]).
+    cut: bool,
 }
 
 impl<'s, 'p> Kernels<'s, 'p> {
@@ -208,7 +220,7 @@ impl<'s, 'p> Kernels<'s, 'p> {
             factorisations: 0,
             built: Vec::new(),
             lines: lines(problem),
-            halved: growth.halved(start),
+            cut: growth.cuts(start),
         }
     }
 
@@ -252,16 +264,16 @@ impl<'s, 'p> Kernels<'s, 'p> {
 
     /// The secant kernel (18) at `u`. If its active set does not hold a
     /// floating body, the guard adds the nearest points
-    /// ([`Event::FloatingGuard`]). With halved growth and `full` (u is a
+    /// ([`Event::FloatingGuard`]). With the growth cut and `full` (u is a
     /// full step from the last kernel), the points the active set adds are
-    /// cut as [`halve_growth`] says.
+    /// cut as [`cut_growth`] says.
     pub fn secant(&mut self, u: &[f64], full: bool, events: &mut Vec<Event>) -> Result<Built<'p>> {
         let mut p = self.sys.p_values(u);
         let mut h: Vec<f64> = p.iter().map(|&v| heaviside(v)).collect();
         let mut dropped = Vec::new();
-        if let (true, true, Some(last)) = (self.halved, full, self.built.last()) {
+        if let (true, true, Some(last)) = (self.cut, full, self.built.last()) {
             let next: Vec<bool> = h.iter().map(|&v| v > 0.5).collect();
-            let cut = halve_growth(last, &next, &self.lines);
+            let cut = cut_growth(last, &next, &self.lines, KEPT);
             for (q, (&c, &n)) in cut.iter().zip(&next).enumerate() {
                 if n && !c {
                     h[q] = 0.0;

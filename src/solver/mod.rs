@@ -67,29 +67,29 @@ pub enum Start {
 }
 
 /// How a secant kernel takes the points its iterate adds to the active
-/// set ([`kernel::halve_growth`]).
+/// set ([`kernel::cut_growth`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Growth {
-    /// Halved after the balanced secant start, full after the tied start
-    /// (which enters every zone from above, where halving has nothing to
-    /// cut, and is the paper's iteration).
+    /// [`Growth::Cut`] after the balanced secant start, [`Growth::Full`]
+    /// after the tied start (the paper's iteration, which enters every
+    /// zone from above, where there is no growth to cut).
     #[default]
     Auto,
     /// Every point with P ≤ 0: the plain semismooth Newton set.
     Full,
-    /// A run of added points next to one active run is cut to its half
-    /// nearest that run, after each full step.
-    Halved,
+    /// After a full step, a run of added points next to one zone of the
+    /// last kernel keeps only the [`kernel::KEPT`] of it nearest the zone.
+    Cut,
 }
 
 impl Growth {
-    /// Whether the kernels of a start from `start` halve the growth.
-    pub fn halved(self, start: Start) -> bool {
+    /// Whether the kernels of a start from `start` cut the growth.
+    pub fn cuts(self, start: Start) -> bool {
         match self {
             Growth::Auto => start == Start::Secant,
             Growth::Full => false,
-            Growth::Halved => true,
+            Growth::Cut => true,
         }
     }
 }
