@@ -12,6 +12,10 @@
 //! sparse LU, or — for θ ≤ 0 — Cholesky of its symmetric positive
 //! definite part with a Sherman–Morrison–Woodbury correction of the trace
 //! rows ([`Problem::kernel_split`], [`crate::linsolve::LowRankCorrected`]).
+//!
+//! Which active set a secant kernel is built for is decided here too: the
+//! set of its iterate, with the growth since the last kernel cut after a
+//! full step ([`cut_growth`], [`super::Growth`]; why, in [`super::newton`]).
 
 use super::guard::Guard;
 use super::history::Event;

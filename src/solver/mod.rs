@@ -193,8 +193,9 @@ impl Default for SolverOptions {
     /// kernel (rigid shifts until the contact forces carry the load), with
     /// the secant correction at every change of the active set (so on Hertz
     /// it behaves like semismooth Newton), full steps until the active sets
-    /// cycle, the iteration on the contact layer, a restart from the tied
-    /// kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
+    /// cycle, the growth of the active set cut after the balanced start
+    /// ([`Growth::Auto`]), the iteration on the contact layer, a restart from
+    /// the tied kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
     /// 300 iterations.
     fn default() -> Self {
         Self {
@@ -237,7 +238,7 @@ impl SolverOptions {
             correct_on: CorrectOn::Growth,
             space: IterationSpace::Body,
             on_stall: OnStall::Fail,
-            growth: Growth::Full,
+            // `Auto` takes the full growth after the tied start
             ..Self::default()
         }
     }
