@@ -353,3 +353,61 @@ impl<'s, 'p> Kernels<'s, 'p> {
         self.sys.p_values(u).into_iter().map(heaviside).collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn set(s: &str) -> Vec<bool> {
+        s.chars().map(|c| c == '#').collect()
+    }
+
+    /// On one line: growth next to one zone keeps its 40 % (rounded up)
+    /// nearest the zone, on either side; a new zone, a filled hole and the
+    /// releases are kept; a set equal to the kernel's is left alone.
+    #[test]
+    fn growth_is_cut_next_to_a_zone_only() {
+        let line = vec![(0..20).collect::<Vec<usize>>()];
+        let cut = |a: &str, b: &str| {
+            let out = cut_growth(&set(a), &set(b), &line, KEPT);
+            out.iter()
+                .map(|&x| if x { '#' } else { '.' })
+                .collect::<String>()
+        };
+        // three added on the left: two kept; one on the right: kept; five
+        // on the right: two kept
+        assert_eq!(
+            cut("...#####............", "#########..........."),
+            ".########..........."
+        );
+        assert_eq!(
+            cut("..####..............", "..#########........."),
+            "..######............"
+        );
+        // a hole filled between two zones, a new zone, a release
+        assert_eq!(
+            cut("##..##..........#...", "######.....###......"),
+            "######.....###......"
+        );
+        // one point added: kept (the edge moves by at least one point)
+        assert_eq!(
+            cut("####................", "#####..............."),
+            "#####..............."
+        );
+        let root = "..######............";
+        assert_eq!(cut(root, root), root);
+    }
+
+    /// The points of a line are taken in the order of t, whatever their
+    /// order in the problem.
+    #[test]
+    fn lines_follow_the_slave_parameter() {
+        let line = vec![vec![3, 0, 2, 1]];
+        // along t: 3 0 2 1; the kernel holds 3, the map adds 0 2 1
+        let a = [false, false, false, true];
+        let b = [true, true, true, true];
+        let out = cut_growth(&a, &b, &line, KEPT);
+        // 40 % of 3 rounded up: 2 points nearest the zone (0 and 2)
+        assert_eq!(out, vec![true, false, true, true]);
+    }
+}
