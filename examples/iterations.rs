@@ -7,12 +7,25 @@
 //! 16²…min(MAX, 128)² at penalty factors 1 to 30, the iterations and
 //! kernel factorisations of the default solver and of `kind = "newton"`.
 //!
+//! The last two columns are the solvers with `growth = "full"`: the
+//! iteration before the cut growth ([`iga_contact::solver::Growth`]).
+//!
+//! `cargo run --release --example iterations -- history N FACTOR` prints
+//! the active points and relative residual of every iteration of both
+//! solvers on the disk on the block (N², penalty factor FACTOR).
+//!
 //! `cargo run --release --example iterations -- map N FACTOR` runs the
 //! undamped active-set map A ↦ {P(u(A)) ≤ 0} on the disk on the block
 //! (N², penalty factor FACTOR), where u(A) is the root of the linear piece
 //! of A (what a full Newton step lands on from any iterate), from sets
 //! that differ from a root's by m points at the edge of its contact zone,
 //! and prints how many maps each start takes and which root it reaches.
+//!
+//! `cargo run --release --example iterations -- emulate N FACTOR K KEPT`
+//! runs that map from the first K points of the contact line with the
+//! growth of every map cut to the fraction KEPT (`cut_growth`; 1 is the
+//! plain map) and prints how many maps reach the root.
+//!
 //! Not a chapter program: its output is not in the book.
 
 use iga_contact::contact::nitsche::heaviside;
@@ -20,7 +33,7 @@ use iga_contact::error::{Error, Result};
 use iga_contact::problem::Problem;
 use iga_contact::scene::{RefineSpec, Scene};
 use iga_contact::solver::trace::{DenseLu, TraceProblem};
-use iga_contact::solver::{solve, SolverKind, SolverOptions};
+use iga_contact::solver::{solve, Growth, SolverKind, SolverOptions};
 
 fn disk_on_block(n: usize, factor: f64) -> Result<Problem> {
     Scene::shipped("disk_on_block.toml")?
@@ -37,8 +50,8 @@ fn hertz(p: usize, n: usize) -> Result<Problem> {
 }
 
 /// "iterations/factorisations (active points, warnings)" of one solve.
-fn count(problem: &Problem, kind: SolverKind) -> String {
-    match solve(problem, &SolverOptions::with_kind(kind)) {
+fn count(problem: &Problem, opts: &SolverOptions) -> String {
+    match solve(problem, opts) {
         Ok(s) => format!(
             "{:>3}/{:<3} ({} active{})",
             s.history.len(),
@@ -55,14 +68,20 @@ fn count(problem: &Problem, kind: SolverKind) -> String {
 }
 
 fn ladder(max: usize) -> Result<()> {
-    println!("case | layer DOFs | contact points | default | newton");
+    println!("case | layer DOFs | contact points | default | newton | default, growth = full | newton, growth = full");
+    let full = |kind| SolverOptions {
+        growth: Growth::Full,
+        ..SolverOptions::with_kind(kind)
+    };
     let row = |label: String, problem: &Problem| {
         println!(
-            "{label} | {} | {} | {} | {}",
+            "{label} | {} | {} | {} | {} | {} | {}",
             problem.layer().len(),
             problem.points.len(),
-            count(problem, SolverKind::Bfgs),
-            count(problem, SolverKind::Newton)
+            count(problem, &SolverOptions::with_kind(SolverKind::Bfgs)),
+            count(problem, &SolverOptions::with_kind(SolverKind::Newton)),
+            count(problem, &full(SolverKind::Bfgs)),
+            count(problem, &full(SolverKind::Newton)),
         );
     };
     let mut n = 16;
@@ -188,6 +207,68 @@ fn map(n: usize, factor: f64) -> Result<()> {
     Ok(())
 }
 
+fn hist(n: usize, factor: f64) -> Result<()> {
+    let problem = disk_on_block(n, factor)?;
+    for kind in [SolverKind::Bfgs, SolverKind::Newton] {
+        match solve(&problem, &SolverOptions::with_kind(kind)) {
+            Ok(s) => println!(
+                "{kind:?}: {}",
+                s.history
+                    .rows
+                    .iter()
+                    .map(|r| format!("{}({:.1e})", r.active_points, r.relative_residual))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            ),
+            Err(e) => println!("{kind:?}: {e}"),
+        }
+    }
+    Ok(())
+}
+
+/// The map with the growth cut to `kept` ([`iga_contact::solver::kernel::cut_growth`])
+/// from the first `k0` points along the line: how many maps to the root,
+/// and the root's zones (start..end along t).
+fn emulate(n: usize, factor: f64, k0: usize, kept: f64) -> Result<()> {
+    let problem = disk_on_block(n, factor)?;
+    let trace = TraceProblem::new(&problem)?;
+    let m = Map { trace };
+    let lines = iga_contact::solver::kernel::lines(&problem);
+    let line = &lines[0];
+    let mut h = vec![false; problem.points.len()];
+    for &q in line.iter().take(k0) {
+        h[q] = true;
+    }
+    let runs = |h: &[bool]| -> String {
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < line.len() {
+            if h[line[i]] {
+                let s = i;
+                while i < line.len() && h[line[i]] {
+                    i += 1;
+                }
+                out.push(format!("{s}..{i}"));
+            } else {
+                i += 1;
+            }
+        }
+        out.join(",")
+    };
+    for k in 1..=40 {
+        let b = m.next(&h)?;
+        if b == h {
+            println!(
+                "{n}² factor {factor} from {k0}, kept {kept}: {k} maps to {}",
+                runs(&b)
+            );
+            break;
+        }
+        h = iga_contact::solver::kernel::cut_growth(&h, &b, &lines, kept);
+    }
+    Ok(())
+}
+
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let number = |k: usize, default: f64| -> Result<f64> {
@@ -198,7 +279,18 @@ fn main() -> Result<()> {
     };
     match args.first().map(String::as_str) {
         Some("map") => map(number(1, 32.0)? as usize, number(2, 20.0)?),
+        Some("emulate") => emulate(
+            number(1, 32.0)? as usize,
+            number(2, 20.0)?,
+            number(3, 10.0)? as usize,
+            number(4, iga_contact::solver::kernel::KEPT)?,
+        ),
+        Some("history") => hist(number(1, 32.0)? as usize, number(2, 20.0)?),
         Some("ladder") | None => ladder(number(1, 256.0)? as usize),
-        Some(other) => Err(Error::invalid("mode", other, "use `ladder` or `map`")),
+        Some(other) => Err(Error::invalid(
+            "mode",
+            other,
+            "use `ladder`, `map`, `history` or `emulate`",
+        )),
     }
 }

@@ -121,7 +121,7 @@ pub(crate) fn solve(
             stalled: false,
         });
     }
-    let mut kernels = Kernels::new(sys, problem);
+    let mut kernels = Kernels::new(sys, problem, opts.growth, start);
     let mut kernel = kernels.start(start, &mut u, &mut r, &mut events)?;
     let mut update = InverseUpdate::default();
     let mut corrections = 0;
@@ -130,8 +130,8 @@ pub(crate) fn solve(
     loop {
         // right after a guarded (re)factorisation, the step follows the
         // residual of the guard's force law
-        let drive = if kernel.guarded() && update.is_empty() {
-            kernels.sys.residual_forced(&u, &kernel.forced).0
+        let drive = if update.is_empty() {
+            kernel.drive(&*kernels.sys, &u, &r)
         } else {
             r.clone()
         };
@@ -171,7 +171,7 @@ pub(crate) fn solve(
         if correct && !done && k > opts.correction_after && trigger && norm(&r_new).is_finite() {
             events.push(Event::Correction);
             corrections += 1;
-            kernel = kernels.secant(&u, &mut events)?;
+            kernel = kernels.secant(&u, step.alpha == 1.0, &mut events)?;
             cycled |= kernels.cycled();
             update.clear();
         }

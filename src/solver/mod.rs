@@ -66,6 +66,34 @@ pub enum Start {
     Secant,
 }
 
+/// How a secant kernel takes the points its iterate adds to the active
+/// set ([`kernel::cut_growth`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Growth {
+    /// [`Growth::Cut`] after the balanced secant start, [`Growth::Full`]
+    /// after the tied start (the paper's iteration, which enters every
+    /// zone from above, where there is no growth to cut).
+    #[default]
+    Auto,
+    /// Every point with P ≤ 0: the plain semismooth Newton set.
+    Full,
+    /// After a full step, a run of added points next to one zone of the
+    /// last kernel keeps only the [`kernel::KEPT`] of it nearest the zone.
+    Cut,
+}
+
+impl Growth {
+    /// Whether the kernels of a start from `start` cut the growth.
+    pub fn cuts(self, start: Start) -> bool {
+        match self {
+            Growth::Auto => start == Start::Secant,
+            Growth::Full => false,
+            Growth::Cut => true,
+        }
+    }
+}
+
 /// When steps are damped by the backtracking line search on ‖R‖.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -155,6 +183,8 @@ pub struct SolverOptions {
     pub space: IterationSpace,
     /// What a stalled damped iteration does.
     pub on_stall: OnStall,
+    /// How the secant kernels take the points added to the active set.
+    pub growth: Growth,
 }
 
 impl Default for SolverOptions {
@@ -163,8 +193,9 @@ impl Default for SolverOptions {
     /// kernel (rigid shifts until the contact forces carry the load), with
     /// the secant correction at every change of the active set (so on Hertz
     /// it behaves like semismooth Newton), full steps until the active sets
-    /// cycle, the iteration on the contact layer, a restart from the tied
-    /// kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
+    /// cycle, the growth of the active set cut after the balanced start
+    /// ([`Growth::Auto`]), the iteration on the contact layer, a restart from
+    /// the tied kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
     /// 300 iterations.
     fn default() -> Self {
         Self {
@@ -181,6 +212,7 @@ impl Default for SolverOptions {
             correct_on: CorrectOn::ActiveSet,
             space: IterationSpace::Auto,
             on_stall: OnStall::RestartTied,
+            growth: Growth::Auto,
         }
     }
 }
@@ -206,6 +238,7 @@ impl SolverOptions {
             correct_on: CorrectOn::Growth,
             space: IterationSpace::Body,
             on_stall: OnStall::Fail,
+            // `Auto` takes the full growth after the tied start
             ..Self::default()
         }
     }

@@ -49,6 +49,10 @@ pub(crate) trait System<'p> {
     /// The residual with the points marked in `forced` under the tied law,
     /// the contact state, and the round-off floors of ‖R‖ at `u`.
     fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor);
+    /// What the residual gains when the points `dropped` (each with
+    /// P ≤ 0 at `u`) are taken out of the active set: R of the active set
+    /// without them is R(u) plus this.
+    fn released(&self, u: &[f64], dropped: &[usize]) -> Vec<f64>;
     /// The kernel of the activity `h` (one H per contact point).
     fn factor(&mut self, h: &[f64], events: &mut Vec<Event>) -> Result<Rc<dyn LinearSolve + 'p>>;
 
@@ -106,6 +110,23 @@ impl<'p> System<'p> for BodySystem<'p> {
         )
     }
 
+    fn released(&self, u: &[f64], dropped: &[usize]) -> Vec<f64> {
+        let full = self.problem.map.expand(u);
+        let mut out = vec![0.0; u.len()];
+        for &q in dropped {
+            let cp = &self.problem.points[q];
+            let (sigma, jump) = cp.normal_stress_and_jump(&full);
+            let p = sigma + cp.gamma * (cp.g0 - jump);
+            for (k, &d) in cp.dofs.iter().enumerate() {
+                if let Some(i) = self.problem.map.free(d) {
+                    out[i] +=
+                        cp.weight / cp.gamma * p * (cp.theta * cp.sn[k] - cp.gamma * cp.jn[k]);
+                }
+            }
+        }
+        out
+    }
+
     fn factor(&mut self, h: &[f64], events: &mut Vec<Event>) -> Result<Rc<dyn LinearSolve + 'p>> {
         if let Some(trace) = &self.trace {
             let lu = DenseLu::new(&trace.kernel(h))?;
@@ -160,6 +181,10 @@ impl<'p> System<'p> for TraceSystem<'p> {
 
     fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor) {
         self.trace.residual_forced(u, forced)
+    }
+
+    fn released(&self, u: &[f64], dropped: &[usize]) -> Vec<f64> {
+        self.trace.released(u, dropped)
     }
 
     fn factor(&mut self, h: &[f64], _: &mut Vec<Event>) -> Result<Rc<dyn LinearSolve + 'p>> {

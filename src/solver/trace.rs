@@ -213,6 +213,22 @@ impl<'a> TraceProblem<'a> {
         (r, ContactState { active }, floor)
     }
 
+    /// What R̂(u) gains when the points `dropped` (all with P ≤ 0) leave
+    /// the active set: their contact force beyond the θ term, w/γ · P ·
+    /// (θ sn − γ jn), added back.
+    pub fn released(&self, u: &[f64], dropped: &[usize]) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim()];
+        for &q in dropped {
+            let (cp, lp) = (&self.problem.points[q], &self.points[q]);
+            let (sigma, jump) = Self::stress_and_jump(cp, lp, u);
+            let p = sigma + cp.gamma * (cp.g0 - jump);
+            for (&i, &k) in lp.at.iter().zip(&lp.local) {
+                out[i] += cp.weight / cp.gamma * p * (cp.theta * cp.sn[k] - cp.gamma * cp.jn[k]);
+            }
+        }
+        out
+    }
+
     /// T(H) = S₀ − G + Σ_q (point matrix at H_q), dense.
     pub fn kernel(&self, h: &[f64]) -> Mat<f64> {
         let mut t = self.cond.schur().clone();
