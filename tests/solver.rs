@@ -214,9 +214,9 @@ fn the_default_solver_needs_few_iterations_on_hertz() {
 /// a strong penalty: the balanced start lies far below the root's zone and
 /// the plain iteration (`growth = "full"`) walks down to it from a first
 /// step at about twice its size, one or two points per step (27 and 29
-/// iterations on 32² at factors 20 and 30). With the growth cut both
-/// solvers reach the same root in at most 10, and p₀ agrees with the
-/// plain iteration's to 1e-8.
+/// iterations on 32² at factors 20 and 30). With the growth cut
+/// (`growth = "auto"`, not yet the default) both solvers reach the same
+/// root in at most 10, and p₀ agrees with the plain iteration's to 1e-8.
 #[test]
 fn the_disk_on_a_block_takes_its_active_set_in_few_iterations() {
     for (n, factor) in [(32, 20.0), (32, 30.0), (64, 20.0)] {
@@ -249,7 +249,11 @@ fn the_disk_on_a_block_takes_its_active_set_in_few_iterations() {
             plain.history.len()
         );
         for kind in [SolverKind::Bfgs, SolverKind::Newton] {
-            let s = solve(&p, &SolverOptions::with_kind(kind)).unwrap();
+            let opts = SolverOptions {
+                growth: Growth::Auto,
+                ..SolverOptions::with_kind(kind)
+            };
+            let s = solve(&p, &opts).unwrap();
             assert!(
                 s.history.len() <= 10,
                 "{n}² factor {factor} {kind:?}: {} iterations",
@@ -366,20 +370,20 @@ fn applied_and_contact(p: &Problem, full: &[f64]) -> (f64, f64) {
 /// Eq. (11) ignores λ), and the tangent need not be coercive: the plain
 /// iteration from the balanced start (`growth = "full"`) stalls at a kink,
 /// and the restart from the tied kernel finds a root; with the growth cut
-/// (the default) the first start reaches a root (another one: 7 active
-/// points against 10) without a restart.
+/// (`growth = "auto"`) the first start reaches a root (another one: 7
+/// active points against 10) without a restart.
 #[test]
 fn the_near_incompressible_disk_converges_after_a_restart() {
     let p = hertz_nu(0.4999);
-    let full = |kind| SolverOptions {
-        growth: Growth::Full,
+    let with = |kind, growth| SolverOptions {
+        growth,
         ..SolverOptions::with_kind(kind)
     };
     for (opts, restarts) in [
-        (SolverOptions::with_kind(SolverKind::Bfgs), 0),
-        (SolverOptions::with_kind(SolverKind::Newton), 0),
-        (full(SolverKind::Bfgs), 1),
-        (full(SolverKind::Newton), 1),
+        (with(SolverKind::Bfgs, Growth::Auto), 0),
+        (with(SolverKind::Newton, Growth::Auto), 0),
+        (with(SolverKind::Bfgs, Growth::Full), 1),
+        (with(SolverKind::Newton, Growth::Full), 1),
     ] {
         let kind = opts.kind;
         let s = solve(&p, &opts).unwrap();
@@ -404,7 +408,7 @@ fn the_near_incompressible_disk_converges_after_a_restart() {
         &p,
         &SolverOptions {
             on_stall: OnStall::Fail,
-            ..full(SolverKind::Bfgs)
+            ..with(SolverKind::Bfgs, Growth::Full)
         },
     )
     .unwrap_err();
