@@ -201,8 +201,9 @@ impl Default for SolverOptions {
     /// kernel (rigid shifts until the contact forces carry the load), with
     /// the secant correction at every change of the active set (so on Hertz
     /// it behaves like semismooth Newton), full steps until the active sets
-    /// cycle, the growth of the active set cut after the balanced start
-    /// ([`Growth::Auto`]), the iteration on the contact layer, a restart from
+    /// cycle, the whole growth of the active set at each step
+    /// ([`Growth::Full`]; see [`Growth`] for the faster `Auto`), the
+    /// iteration on the contact layer, a restart from
     /// the tied kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
     /// 300 iterations.
     fn default() -> Self {
@@ -220,7 +221,7 @@ impl Default for SolverOptions {
             correct_on: CorrectOn::ActiveSet,
             space: IterationSpace::Auto,
             on_stall: OnStall::RestartTied,
-            growth: Growth::Auto,
+            growth: Growth::Full,
         }
     }
 }
@@ -246,7 +247,6 @@ impl SolverOptions {
             correct_on: CorrectOn::Growth,
             space: IterationSpace::Body,
             on_stall: OnStall::Fail,
-            // `Auto` takes the full growth after the tied start
             ..Self::default()
         }
     }
