@@ -3,8 +3,8 @@
 //!
 //! R is piecewise linear in u, so a full step lands on the root of the
 //! linear piece of the tangent's active set: undamped, the method is a map
-//! between active sets, and it can cycle (period 4 on Hertz 8×8, p = 2,
-//! from the tied start). Since Δu = K_T⁻¹R is a descent direction of
+//! between active sets, and it can fail only by revisiting one (a cycle;
+//! from the tied start on Hertz 8×8 it does not). Since Δu = K_T⁻¹R is a descent direction of
 //! ½‖R‖² wherever R is differentiable, halving the step until ‖R‖
 //! decreases enough (Armijo) removes the cycle; at a kink the direction may
 //! fail to descend, and then the best step tried is taken. But damping
