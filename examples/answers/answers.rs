@@ -67,10 +67,10 @@ impl Class {
 
     pub fn label(self) -> &'static str {
         match self {
-            Class::Prescribed => "prescribed displacement, no rigid mode",
+            Class::Prescribed => "pressed block, no rigid mode",
             Class::LengthScale => "length scale L = 1e-9 … 1e9",
             Class::StiffnessScale => "stiffness scale s = 1e-6 … 1e12",
-            Class::SlaveMaster => "slave and master swapped",
+            Class::SlaveMaster => "slave/master swapped",
             Class::Poisson => "ν = 0.3 … 0.49999",
             Class::Penalty => "penalty factor 1e-12 … 1e6",
             Class::Load => "load × 1 … 16",
@@ -112,11 +112,11 @@ impl Verdict {
     pub fn label(self) -> &'static str {
         match self {
             Verdict::Right => "right",
-            Verdict::WarnedRight => "right, with a warning",
-            Verdict::WarnedWrong => "wrong, with a warning",
-            Verdict::SilentWrong => "wrong, no warning",
-            Verdict::Failed => "failed cleanly (exit 1)",
-            Verdict::Refused => "refused cleanly (exit 2)",
+            Verdict::WarnedRight => "right, warned",
+            Verdict::WarnedWrong => "wrong, warned",
+            Verdict::SilentWrong => "wrong, silent",
+            Verdict::Failed => "failed (exit 1)",
+            Verdict::Refused => "refused (exit 2)",
             Verdict::Unclean => "unclean",
         }
     }
