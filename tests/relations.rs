@@ -175,7 +175,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "iga_vs_fem.md",
-        "and with the library's default solver on every thread of the machine",
+        "and with the default solver on every thread of the machine",
         "names the thread setting of a run, not a result",
     ),
     (

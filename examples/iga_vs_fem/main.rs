@@ -57,6 +57,9 @@ struct Row {
     profile: PressureProfile,
     /// Median seconds, default solver, the machine's threads.
     seconds: f64,
+    /// Median seconds, default solver, one thread: with `seconds` it
+    /// separates the effect of the threads from that of the solver.
+    one_thread_seconds: f64,
     /// Median seconds of the paper's iteration on one thread, the paper's
     /// setting; `None` if it did not converge.
     paper_seconds: Option<f64>,
@@ -70,8 +73,8 @@ struct Row {
 /// Builds and solves one method `REPEATS` times with the default BFGS and
 /// keeps the median time of assembly + solve. If BFGS does not converge,
 /// that is recorded and the method is measured with Newton instead. Then
-/// the paper's setting: its iteration (the scene's `[solver]`) on one
-/// thread.
+/// the same solver on one thread, and the paper's setting: its iteration
+/// (the scene's `[solver]`) on one thread.
 fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
     let scene = setup::scene(refine)?;
     let mut solver = "BFGS".to_string();
@@ -84,7 +87,7 @@ fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
             Ok((problem, solution))
         }) {
             Ok(t) => {
-                timed = Some(t);
+                timed = Some((t, opts));
                 break;
             }
             Err(Error::NotConverged { reason, .. }) => {
@@ -93,11 +96,20 @@ fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
             Err(e) => return Err(e),
         }
     }
-    let timed = timed.ok_or_else(|| Error::invalid(label, &solver, "no solver converged"))?;
+    let (timed, opts) =
+        timed.ok_or_else(|| Error::invalid(label, &solver, "no solver converged"))?;
     let one_thread = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .map_err(|e| Error::invalid("thread pool", 1, e.to_string()))?;
+    let one_thread_seconds = one_thread
+        .install(|| {
+            median_time(REPEATS, || {
+                let problem = scene.build()?;
+                solve(&problem, &opts)
+            })
+        })?
+        .seconds;
     let paper = one_thread.install(|| {
         median_time(REPEATS, || {
             let problem = scene.build()?;
@@ -121,6 +133,7 @@ fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
         solver,
         profile: PressureProfile::dense(&problem, &solution.full)?,
         seconds: timed.seconds,
+        one_thread_seconds,
         paper_seconds,
         paper_iterations,
     })
@@ -201,6 +214,7 @@ fn main() -> Result<()> {
     let ms = |s: f64| format!("{} ms", Format::Fixed(2).render(1e3 * s));
     let threads = rayon::current_num_threads();
     let iga_seconds = rows[0].seconds;
+    let iga_one_thread_seconds = rows[0].one_thread_seconds;
     let iga_paper_seconds = rows[0].paper_seconds;
     for r in &rows {
         let m = r.profile.measures(0);
@@ -258,6 +272,15 @@ fn main() -> Result<()> {
                 (Some(i), Some(m)) => (i / m).into(),
                 _ => Cell::Empty,
             },
+            REPEATS.into(),
+        ])?;
+    }
+    for r in &rows {
+        timings.push(vec![
+            r.label.into(),
+            "default, 1 thread".into(),
+            ms(r.one_thread_seconds).into(),
+            (iga_one_thread_seconds / r.one_thread_seconds).into(),
             REPEATS.into(),
         ])?;
     }
@@ -342,6 +365,11 @@ fn main() -> Result<()> {
             iga_seconds / r.seconds,
             Format::Times(1),
         )?;
+        f.timed_number(
+            &format!("{key}_one_thread_ratio"),
+            iga_one_thread_seconds / r.one_thread_seconds,
+            Format::Times(1),
+        )?;
         if let (Some(i), Some(m)) = (iga_paper_seconds, r.paper_seconds) {
             f.timed_number(&format!("{key}_paper_ratio"), i / m, Format::Times(1))?;
         }
@@ -355,6 +383,22 @@ fn main() -> Result<()> {
         )?;
         f.text(&format!("{key}_solver"), r.solver.clone())?;
     }
+    // The gap between Q1 and IGA as the ratio of their errors against the
+    // reference, beside the paper's ratio of its two errors.
+    let (iga, q1) = (rows[0].profile.measures(0), rows[1].profile.measures(0));
+    let gap =
+        |q1: f64, iga: f64, reference: f64| relative(q1, reference) / relative(iga, reference);
+    f.number("gap_p0", gap(q1.p0, iga.p0, ref_p0), Format::Times(1))?;
+    f.number(
+        "gap_a",
+        gap(q1.half_width, iga.half_width, ref_a),
+        Format::Times(1),
+    )?;
+    f.number(
+        "paper_gap",
+        PAPER_FEM_ERROR / PAPER_IGA_ERROR,
+        Format::Times(1),
+    )?;
     // ANCHOR_END: facts
 
     // The three profiles against Hertz, in mm and MPa, up to 1.5 a.
