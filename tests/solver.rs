@@ -215,7 +215,7 @@ fn the_default_solver_needs_few_iterations_on_hertz() {
 /// the plain iteration (`growth = "full"`) walks down to it from a first
 /// step at about twice its size, one or two points per step (27 and 29
 /// iterations on 32² at factors 20 and 30). With the growth cut
-/// (`growth = "auto"`, not yet the default) both solvers reach the same
+/// (`growth = "auto"`, the default) both solvers reach the same
 /// root in at most 10, and p₀ agrees with the plain iteration's to 1e-8.
 #[test]
 fn the_disk_on_a_block_takes_its_active_set_in_few_iterations() {

@@ -71,20 +71,21 @@ pub enum Start {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 ///
-/// The default is still [`Growth::Full`]: [`Growth::Auto`] takes at most 7
-/// iterations on the disk on an elastic block from 16² to 128² at penalty
-/// factors 1–30 (8–42 with `Full`), and 4–9 on Hertz to 512², with the
-/// same roots where the root is unique; it becomes the default once the
-/// book's chapters are regenerated with it (their iteration counts change),
-/// and where a problem has several discrete roots (Hertz under 8× load,
-/// ν = 0.4999) it can end on another one.
+/// The default is [`Growth::Auto`]: it takes at most 7 iterations on the
+/// disk on an elastic block from 16² to 128² at penalty factors 1–30 (8–42
+/// with `Full`), and 4–9 on Hertz to 512², with the same roots where the
+/// root is unique. The paper's iteration (the tied start) is unchanged by
+/// it. Where a problem has several discrete roots (Hertz under 8× load,
+/// ν = 0.4999) the two growths can end on different ones; the solution
+/// then carries the warning that makes it doubtful (the zone at the end of
+/// the slave side, the penalty below its bound).
 pub enum Growth {
     /// [`Growth::Cut`] after the balanced secant start, [`Growth::Full`]
     /// after the tied start (the paper's iteration, which enters every
     /// zone from above, where there is no growth to cut).
+    #[default]
     Auto,
     /// Every point with P ≤ 0: the plain semismooth Newton set.
-    #[default]
     Full,
     /// After a full step, a run of added points next to one zone of the
     /// last kernel keeps only the [`kernel::KEPT`] of it nearest the zone.
@@ -201,9 +202,8 @@ impl Default for SolverOptions {
     /// kernel (rigid shifts until the contact forces carry the load), with
     /// the secant correction at every change of the active set (so on Hertz
     /// it behaves like semismooth Newton), full steps until the active sets
-    /// cycle, the whole growth of the active set at each step
-    /// ([`Growth::Full`]; see [`Growth`] for the faster `Auto`), the
-    /// iteration on the contact layer, a restart from
+    /// cycle, the growth of the active set cut next to each zone
+    /// ([`Growth::Auto`]), the iteration on the contact layer, a restart from
     /// the tied kernel on a stall, and the tolerances rtol = 1e-10, utol = 1e-8 within
     /// 300 iterations.
     fn default() -> Self {
@@ -221,7 +221,7 @@ impl Default for SolverOptions {
             correct_on: CorrectOn::ActiveSet,
             space: IterationSpace::Auto,
             on_stall: OnStall::RestartTied,
-            growth: Growth::Full,
+            growth: Growth::Auto,
         }
     }
 }
