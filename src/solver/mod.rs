@@ -718,9 +718,12 @@ pub(crate) enum Fallback {
     /// Take the best step tried (Newton: a full step could cycle).
     Best,
     /// Take the full step. BFGS asks for this from an iterate with no
-    /// active contact point: there (a body floating above the obstacle) no
-    /// step along the BFGS direction reduces ‖R‖, a tiny step would stall
-    /// the iteration for good, and the correction handles the rest.
+    /// active contact point (a body floating above the obstacle): there R
+    /// is affine for steps that keep the points open, and its component
+    /// along a floating mode t is tᵀL whatever the step, so ‖R‖ stays at
+    /// or above |tᵀL|/‖t‖, the Armijo test may fail for every short step,
+    /// a tiny step would stall the iteration, and the correction handles
+    /// the rest.
     Full,
 }
 
