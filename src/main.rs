@@ -310,6 +310,13 @@ fn usage_line(text: &str) -> String {
 }
 
 fn main() -> ExitCode {
+    // First, so that the window in which SIGINT or SIGTERM still has its
+    // default action is the process's start-up before `main` only, when
+    // nothing is staged yet.
+    if let Err(e) = atomic::install_signal_cleanup() {
+        eprintln!("error: {}", one_line(&e.to_string()));
+        return ExitCode::from(1);
+    }
     let cli = match parse_args() {
         Ok(cli) => cli,
         Err(code) => return code,
@@ -319,10 +326,6 @@ fn main() -> ExitCode {
     // SAFETY: setting a signal's disposition to "ignore" has no preconditions.
     unsafe {
         libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
-    }
-    if let Err(e) = atomic::install_signal_cleanup() {
-        eprintln!("error: {}", one_line(&e.to_string()));
-        return ExitCode::from(1);
     }
     // A panic is a bug, but the user still gets one `error:` line and exit
     // code 1 rather than a backtrace and 101.

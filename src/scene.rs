@@ -1040,7 +1040,7 @@ impl Scene {
                     format!("{f}.quadrature"),
                     q,
                     wellposed::min_quadrature(p),
-                    format!("a body of degree {p} needs per direction (p + 1: the stiffness is exact on affine elements; fewer leave zero-energy modes)"),
+                    format!("a body of degree {p} needs per direction (p + 1: the stiffness is exact on affine elements; fewer may leave zero-energy modes)"),
                 )?;
             }
         }

@@ -369,3 +369,42 @@ fn the_prose_types_no_measured_number() {
         offenders.join("\n")
     );
 }
+
+/// The code of every table and figure caption (`**Table IN1.**` has `IN`).
+fn caption_codes(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for marker in ["**Table ", "**Fig. "] {
+        for (at, _) in text.match_indices(marker) {
+            let rest = &text[at + marker.len()..];
+            let code: String = rest
+                .chars()
+                .take_while(|c| c.is_ascii_uppercase())
+                .collect();
+            let numbered = rest[code.len()..].starts_with(|c: char| c.is_ascii_digit());
+            if !code.is_empty() && numbered {
+                out.push(code);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_caption_code_is_listed_in_the_introduction() {
+    let intro = std::fs::read_to_string(book_src().join("introduction.md")).unwrap();
+    let mut missing = Vec::new();
+    for (chapter, text) in chapters() {
+        for code in caption_codes(&text) {
+            if !intro.contains(&format!(" {code} (")) {
+                missing.push(format!("{chapter}: {code}"));
+            }
+        }
+    }
+    missing.sort();
+    missing.dedup();
+    assert!(
+        missing.is_empty(),
+        "caption codes missing from the numbering list of introduction.md:\n{}",
+        missing.join("\n")
+    );
+}

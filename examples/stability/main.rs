@@ -261,9 +261,9 @@ struct Row {
     /// Inactive points below the bound. For θ = 1 they matter too: every
     /// point, active or not, adds −(θ/γ) w sₙsₙᵀ to the tangent, negative
     /// semidefinite for θ > 0, so coercivity needs γ above the bound there
-    /// as well. The solver's warning counts active points only.
+    /// as well. The solver's warning counts them too, against θ·C_T.
     below_inactive: usize,
-    /// Active points on a singular element (det J = 0 at the collapsed
+    /// Active points on a singular element (at the degenerate (det J = 0)
     /// corner of the disk), which the library counts but never judges.
     singular_active: usize,
     /// The largest displacement component at the solution (m).
@@ -444,8 +444,8 @@ const PENALTY_TOLERANCE: f64 = 0.05;
 /// A cell of a penalty × θ view: the error (in `format`) and the iteration
 /// count, `†` where active points have a penalty below the stability bound
 /// (the solver warns), `‡` where for θ = 1 only inactive points do (their
-/// term −(1/γ) w sₙsₙᵀ enters the tangent too, and the solver does not
-/// warn).
+/// term −(1/γ) w sₙsₙᵀ enters the tangent too, and the solver warns about
+/// them as well).
 fn penalty_cell(r: &Row, format: Format) -> String {
     let its = r.history.len();
     match (r.status, r.error) {

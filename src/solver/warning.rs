@@ -19,8 +19,9 @@ use crate::problem::Problem;
 /// The fewest active points that count as resolving a contact zone.
 pub const RESOLVED: usize = 3;
 
-/// γ over the θ = 0 stability bound C_T/4 of its element above which a
-/// penalty over-constrains the contact: on Hertz 8×8, θ = 0, the error of
+/// γ over the θ = 0 stability bound C_T/4 of its element above which p₀
+/// drifts with the penalty (commonly explained by a penalty that
+/// over-constrains the contact, which is not tested): on Hertz 8×8, θ = 0, the error of
 /// p₀ is +2.5 % at a ratio of 7, +3.0 % at 10, +5.2 % at 24 and +8.2 % at
 /// 270 (the factor-1 value is near 2.4, whatever the mesh). The error
 /// depends on γ, not on θ, so the θ = 0 bound is the scale for every θ.
@@ -109,8 +110,10 @@ pub enum Warning {
         remedy: PenaltyRemedy,
     },
     /// Active points of pair `pair` whose penalty exceeds [`OVER_PENALTY`]
-    /// times the θ = 0 bound of their element: the contact over-constrains
-    /// the mesh, and p₀ grows with the penalty.
+    /// times the θ = 0 bound of their element: there p₀ was measured to
+    /// grow with the penalty (Hertz 8×8, see [`OVER_PENALTY`]); that the
+    /// contact over-constrains the mesh is the usual explanation, not
+    /// tested.
     PenaltyFarAboveBound {
         pair: usize,
         over: usize,
@@ -164,7 +167,7 @@ pub enum Warning {
         end: SideEnd,
         at: [f64; 2],
         /// Whether the slave's map is singular at that end (det J = 0, as
-        /// at the collapsed corner of the nine-point disk).
+        /// at the degenerate corner of the nine-point disk).
         singular: bool,
     },
     /// The contact zone of pair `pair` rests on fewer than [`RESOLVED`]
@@ -271,7 +274,7 @@ impl std::fmt::Display for Warning {
                 remedy,
             } => write!(
                 f,
-                "contact[{pair}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of their element (largest γ/bound {max_ratio:.3}), which over-constrains the contact and raises the peak pressure: {}",
+                "contact[{pair}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of their element (largest γ/bound {max_ratio:.3}); above that ratio the peak pressure was measured to grow with the penalty: {}",
                 counted_words(*counted),
                 if *over == 1 { "has" } else { "have" },
                 remedy_words(*pair, *remedy)
@@ -534,8 +537,8 @@ pub fn zones_at_side_end(problem: &Problem, p: &[f64]) -> Vec<Warning> {
 }
 
 /// The largest angle between the slave side's direction at an end and the
-/// next side's that counts as a smooth continuation (a collapsed corner
-/// such as the nine-point disk's, where det J = 0, has angle 0).
+/// next side's that counts as a smooth continuation (a degenerate
+/// (det J = 0) corner such as the nine-point disk's has angle 0).
 const SMOOTH: f64 = 30.0;
 
 /// Whether the boundary of `body` goes on past `end` of `side` within
