@@ -12,9 +12,13 @@ use std::process::{Command, Stdio};
 
 type Set = BTreeMap<String, Vec<u8>>;
 
-/// The kills are spread over this many times a clean run, so that some
-/// land after the commit.
+/// The kills are spaced by this many times a clean run over [`KILLS`]
+/// moments, and go on past that span until a run ends before its kill, so
+/// that they cover every phase up to the commit and beyond whatever the
+/// machine's load.
 pub const KILL_SPAN: f64 = 1.25;
+/// The planned number of kill moments (more if the runs are slow).
+pub const KILLS: usize = 40;
 /// SIGINT and SIGTERM are each sent at this many moments of a run.
 pub const SIGNAL_MOMENTS: usize = 10;
 /// Rounds of two runs started together into one folder.
@@ -134,7 +138,12 @@ pub struct Faults {
     pub fixture_seconds: f64,
     pub fixture_files: Vec<(String, usize)>,
     pub kills: usize,
+    /// Kills after which a staging folder was left, and of those the ones
+    /// the next run removed.
+    pub kills_left: usize,
     pub kills_cleaned: usize,
+    /// The last kill moment, in clean runs.
+    pub kill_span: f64,
 }
 
 impl Faults {
@@ -188,8 +197,10 @@ pub fn run(work: &Path) -> Result<Faults> {
         trials: 0,
         fixture_seconds: f.seconds,
         fixture_files: f.files(),
-        kills: 40,
+        kills: 0,
+        kills_left: 0,
         kills_cleaned: 0,
+        kill_span: 0.0,
     };
 
     // A full disk at every file: a file-size limit one byte below each size.
@@ -248,20 +259,31 @@ pub fn run(work: &Path) -> Result<Faults> {
         ])?;
     }
 
-    // SIGKILL spread over a whole run and a little beyond.
+    // SIGKILL at evenly spaced moments, on past the planned span until a
+    // run ends before its kill (at most three times as many moments).
+    let step = f.seconds * KILL_SPAN / (KILLS - 1) as f64;
     let mut trials = Vec::new();
-    for k in 0..out.kills {
-        let after = f.seconds * KILL_SPAN * k as f64 / (out.kills - 1) as f64;
-        trials.push(f.run_new(Launch {
-            signal: Some((libc::SIGKILL, after)),
+    for k in 0..3 * KILLS {
+        let t = f.run_new(Launch {
+            signal: Some((libc::SIGKILL, step * k as f64)),
             ..Launch::default()
-        }));
+        });
+        let (ended, left) = (t.outcome.code == Some(0), t.staging > 0);
+        trials.push(t);
         f.reset();
-        out.kills_cleaned += usize::from(atomic::staging_entries(&f.out).is_empty());
+        if left {
+            out.kills_left += 1;
+            out.kills_cleaned += usize::from(atomic::staging_entries(&f.out).is_empty());
+        }
+        out.kill_span = step * k as f64 / f.seconds;
+        if k + 1 >= KILLS && ended {
+            break;
+        }
     }
-    let next = format!("staging removed {} of {}", out.kills_cleaned, out.kills);
+    out.kills = trials.len();
+    let next = format!("staging removed {} of {}", out.kills_cleaned, out.kills_left);
     out.row(
-        &format!("SIGKILL at {} moments, parse to commit", out.kills),
+        &format!("SIGKILL at {} moments, parse to past the end", out.kills),
         &trials,
         &next,
     )?;
