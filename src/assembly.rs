@@ -107,6 +107,7 @@ pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
 pub fn volumetric_terms(body: &Body, sp: &SplinePressure) -> Vec<(Vec<usize>, DMatrix<f64>)> {
     let kappa = body.material.bulk_modulus();
     (0..sp.len())
+        .into_par_iter()
         .map(|i| {
             let g = sp.div(i);
             let m = sp.mass(i);
@@ -779,28 +780,16 @@ pub fn stiffness_matrix(
     let body_loads = split_at_all(&mut body_load, &chunk_bounds(&chunks, n));
     let vals = split_at_all(&mut val, &bounds);
     let (col_ptr_ref, row_idx_ref) = (&col_ptr, &row_idx);
-    // the volumetric terms of mixed bodies, as free DOFs (None: prescribed)
-    let volumetric: Vec<Vec<(Vec<usize>, DMatrix<f64>)>> = bodies
+    // the pressure space of each mixed body, built once; its volumetric
+    // terms κ ĝ_i ĝ_iᵀ / m̂_i are rank one and formed where they are added
+    let pressures: Vec<Option<SplinePressure>> = bodies
         .iter()
-        .enumerate()
-        .map(|(bi, b)| -> Result<_> {
-            if b.formulation != Formulation::Mixed {
-                return Ok(Vec::new());
-            }
-            let sp = SplinePressure::new(b)?;
-            Ok(volumetric_terms(b, &sp)
-                .into_iter()
-                .map(|(local, k)| {
-                    let dofs = local
-                        .iter()
-                        .map(|&d| map.global(bi, d / 2, d % 2))
-                        .collect();
-                    (dofs, k)
-                })
-                .collect())
+        .map(|b| match b.formulation {
+            Formulation::Mixed => SplinePressure::new(b).map(Some),
+            _ => Ok(None),
         })
         .collect::<Result<_>>()?;
-    let volumetric = &volumetric;
+    let pressures = &pressures;
     chunks
         .par_iter()
         .zip(
@@ -811,7 +800,11 @@ pub fn stiffness_matrix(
             let body = &bodies[ch.body];
             let force = forces.get(ch.body).copied().filter(|f| *f != [0.0, 0.0]);
             let q = body.space.patch.degree()[1];
-            let base = col_ptr_ref[ch.cols[0]];
+            let owned = OwnedColumns {
+                cols: ch.cols,
+                col_ptr: col_ptr_ref,
+                row_idx: row_idx_ref,
+            };
             for (e, el) in body.space.elements.iter().enumerate() {
                 let sy = el.spans[1];
                 if sy < ch.rows[0] || sy - q >= ch.rows[1] {
@@ -820,61 +813,29 @@ pub fn stiffness_matrix(
                 let (ke, fe) = element_integrals(body, e, force)?;
                 let dofs = map.element_dofs(ch.body, &el.cps);
                 let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
-                for (bl, fb) in free.iter().enumerate() {
-                    let Some(j) = fb.filter(|&j| j >= ch.cols[0] && j < ch.cols[1]) else {
-                        continue;
-                    };
-                    // element rows are increasing, like the column's
-                    let rows = &row_idx_ref[col_ptr_ref[j]..col_ptr_ref[j + 1]];
-                    let mut at = 0;
+                owned.add(map, &dofs, &free, |a, b| ke[(a, b)], vals, lift);
+                if force.is_some() {
                     for (a, fa) in free.iter().enumerate() {
-                        let Some(i) = *fa else { continue };
-                        while rows[at] < i {
-                            at += 1;
-                        }
-                        vals[col_ptr_ref[j] - base + at] += ke[(a, bl)];
-                    }
-                }
-                for (a, fa) in free.iter().enumerate() {
-                    let Some(i) = fa.filter(|&i| i >= ch.cols[0] && i < ch.cols[1]) else {
-                        continue;
-                    };
-                    if force.is_some() {
-                        body_load[i - ch.cols[0]] += fe[a];
-                    }
-                    for (bl, fb) in free.iter().enumerate() {
-                        if fb.is_none() {
-                            lift[i - ch.cols[0]] += ke[(a, bl)] * map.prescribed(dofs[bl]);
+                        if let Some(i) = owned.column(fa) {
+                            body_load[i - ch.cols[0]] += fe[a];
                         }
                     }
                 }
             }
             // the mixed formulation's volumetric terms, one per pressure
             // function, into the columns this task owns
-            for (dofs, k) in &volumetric[ch.body] {
-                let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
-                let owned = |f: &Option<usize>| f.filter(|&j| j >= ch.cols[0] && j < ch.cols[1]);
-                if !free.iter().any(|f| owned(f).is_some()) {
-                    continue;
-                }
-                for (bl, fb) in free.iter().enumerate() {
-                    let Some(j) = owned(fb) else { continue };
-                    let rows = &row_idx_ref[col_ptr_ref[j]..col_ptr_ref[j + 1]];
-                    let mut at = 0;
-                    for (a, fa) in free.iter().enumerate() {
-                        let Some(i) = *fa else { continue };
-                        while rows[at] < i {
-                            at += 1;
-                        }
-                        vals[col_ptr_ref[j] - base + at] += k[(a, bl)];
-                    }
-                }
-                for (a, fa) in free.iter().enumerate() {
-                    let Some(i) = owned(fa) else { continue };
-                    for (bl, fb) in free.iter().enumerate() {
-                        if fb.is_none() {
-                            lift[i - ch.cols[0]] += k[(a, bl)] * map.prescribed(dofs[bl]);
-                        }
+            if let Some(sp) = &pressures[ch.body] {
+                let kappa = body.material.bulk_modulus();
+                for i in 0..sp.len() {
+                    let (g, m) = (sp.div(i), sp.mass(i));
+                    let dofs: Vec<usize> = g
+                        .iter()
+                        .map(|e| map.global(ch.body, e.0 / 2, e.0 % 2))
+                        .collect();
+                    let free: Vec<Option<usize>> = dofs.iter().map(|&d| map.free(d)).collect();
+                    if free.iter().any(|f| owned.column(f).is_some()) {
+                        let k = |a: usize, b: usize| kappa * g[a].1 * g[b].1 / m;
+                        owned.add(map, &dofs, &free, k, vals, lift);
                     }
                 }
             }
@@ -887,6 +848,58 @@ pub fn stiffness_matrix(
         lift,
         body_load,
     })
+}
+
+/// The columns [cols₀, cols₁) of the compressed matrix that one task owns,
+/// with the pattern of the whole matrix.
+struct OwnedColumns<'a> {
+    cols: [usize; 2],
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+}
+
+impl OwnedColumns<'_> {
+    /// The free index `f` if this task owns it.
+    fn column(&self, f: &Option<usize>) -> Option<usize> {
+        f.filter(|&j| j >= self.cols[0] && j < self.cols[1])
+    }
+
+    /// Adds the local matrix `k(a, b)` over the global DOFs `dofs` (free indices
+    /// `free`): its owned columns into `vals` (the values of the owned
+    /// columns), and for its owned rows the prescribed columns times their
+    /// values into `lift` (indexed from cols₀). The free rows of `dofs`
+    /// must be increasing, like a column's rows, so one pass finds them.
+    fn add(
+        &self,
+        map: &DofMap,
+        dofs: &[usize],
+        free: &[Option<usize>],
+        k: impl Fn(usize, usize) -> f64,
+        vals: &mut [f64],
+        lift: &mut [f64],
+    ) {
+        let base = self.col_ptr[self.cols[0]];
+        for (bl, fb) in free.iter().enumerate() {
+            let Some(j) = self.column(fb) else { continue };
+            let rows = &self.row_idx[self.col_ptr[j]..self.col_ptr[j + 1]];
+            let mut at = 0;
+            for (a, fa) in free.iter().enumerate() {
+                let Some(i) = *fa else { continue };
+                while rows[at] < i {
+                    at += 1;
+                }
+                vals[self.col_ptr[j] - base + at] += k(a, bl);
+            }
+        }
+        for (a, fa) in free.iter().enumerate() {
+            let Some(i) = self.column(fa) else { continue };
+            for (bl, fb) in free.iter().enumerate() {
+                if fb.is_none() {
+                    lift[i - self.cols[0]] += k(a, bl) * map.prescribed(dofs[bl]);
+                }
+            }
+        }
+    }
 }
 
 /// The free-column boundaries of the chunks: 0, …, n.

@@ -17,6 +17,11 @@
 use crate::dofs::Body;
 use crate::error::Result;
 use crate::nurbs::KnotVector;
+use rayon::prelude::*;
+
+/// One pressure function's integrals over one element: its index, ∫_e N̂_i,
+/// and ∫_e N̂_i ∂/∂x_c per element DOF (2·a + c).
+type Local = (usize, f64, Vec<f64>);
 
 /// The pressure space of one body and its divergence functionals.
 #[derive(Clone, Debug)]
@@ -50,26 +55,15 @@ impl SplinePressure {
             div: vec![Vec::new(); n],
             element_mass: Vec::with_capacity(space.elements.len()),
         };
-        for el in &space.elements {
-            let qps = space.quadrature(el)?;
-            let mut local: Vec<(usize, f64, Vec<f64>)> = Vec::new();
-            for qp in &qps {
-                for (i, v) in this.basis(qp.param[0], qp.param[1]) {
-                    let k = match local.iter().position(|l| l.0 == i) {
-                        Some(k) => k,
-                        None => {
-                            local.push((i, 0.0, vec![0.0; 2 * el.cps.len()]));
-                            local.len() - 1
-                        }
-                    };
-                    let wv = qp.weight * v;
-                    local[k].1 += wv;
-                    for (a, g) in qp.shape.grad.iter().enumerate() {
-                        local[k].2[2 * a] += wv * g[0];
-                        local[k].2[2 * a + 1] += wv * g[1];
-                    }
-                }
-            }
+        // the elements' integrals in parallel, merged in element order:
+        // deterministic, and the merge is linear in the entries
+        let locals: Vec<Result<Vec<Local>>> = space
+            .elements
+            .par_iter()
+            .map(|el| this.element_integrals(space, el))
+            .collect();
+        for (el, local) in space.elements.iter().zip(locals) {
+            let local = local?;
             let mut em = Vec::with_capacity(local.len());
             for (i, m, g) in local {
                 this.mass[i] += m;
@@ -81,18 +75,36 @@ impl SplinePressure {
             }
             this.element_mass.push(em);
         }
-        for d in &mut this.div {
-            d.sort_by_key(|e| e.0);
-            d.dedup_by(|later, kept| {
-                if later.0 == kept.0 {
-                    kept.1 += later.1;
-                    true
-                } else {
-                    false
-                }
-            });
-        }
+        this.div.par_iter_mut().for_each(merge_sorted);
         Ok(this)
+    }
+
+    /// ∫_e N̂_i and ∫_e N̂_i ∂/∂x_c over the element's shape functions (2·a
+    /// + c), for the pressure functions i not zero on element `el`.
+    fn element_integrals(
+        &self,
+        space: &crate::space::Space,
+        el: &crate::space::Element,
+    ) -> Result<Vec<Local>> {
+        let mut local: Vec<Local> = Vec::new();
+        for qp in &space.quadrature(el)? {
+            for (i, v) in self.basis(qp.param[0], qp.param[1]) {
+                let k = match local.iter().position(|l| l.0 == i) {
+                    Some(k) => k,
+                    None => {
+                        local.push((i, 0.0, vec![0.0; 2 * el.cps.len()]));
+                        local.len() - 1
+                    }
+                };
+                let wv = qp.weight * v;
+                local[k].1 += wv;
+                for (a, g) in qp.shape.grad.iter().enumerate() {
+                    local[k].2[2 * a] += wv * g[0];
+                    local[k].2[2 * a + 1] += wv * g[1];
+                }
+            }
+        }
+        Ok(local)
     }
 
     /// The number of pressure functions.
@@ -142,15 +154,20 @@ impl SplinePressure {
             let c = v / self.mass[i];
             row.extend(self.div[i].iter().map(|&(d, g)| (d, c * g)));
         }
-        row.sort_by_key(|e| e.0);
-        row.dedup_by(|later, kept| {
-            if later.0 == kept.0 {
-                kept.1 += later.1;
-                true
-            } else {
-                false
-            }
-        });
+        merge_sorted(&mut row);
         row
     }
+}
+
+/// Sorts (index, value) pairs by index and sums the values of equal indices.
+fn merge_sorted(v: &mut Vec<(usize, f64)>) {
+    v.sort_by_key(|e| e.0);
+    v.dedup_by(|later, kept| {
+        if later.0 == kept.0 {
+            kept.1 += later.1;
+            true
+        } else {
+            false
+        }
+    });
 }

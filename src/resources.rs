@@ -45,6 +45,7 @@
 //! of `iga-contact run` (`examples/memory_table.rs`).
 
 use crate::error::{Error, Result};
+use crate::material::Formulation;
 
 /// Bytes of a run that does not depend on its size (code, allocator
 /// arenas, thread stacks): the peak of the smallest scenes.
@@ -81,6 +82,8 @@ pub struct BodySize {
     pub elements: [usize; 2],
     /// Elements along each side: [xi_min/xi_max, eta_min/eta_max].
     pub side_elements: [usize; 2],
+    /// The bulk formulation: the mixed one widens the stencil.
+    pub formulation: Formulation,
 }
 
 impl BodySize {
@@ -103,13 +106,49 @@ impl BodySize {
         self.n_elements() * m * m
     }
 
-    /// Upper bound on the stiffness non-zeros.
+    /// How many spans beyond its own a basis function couples with in
+    /// direction `d`: p − 1 for the mixed formulation, whose volumetric
+    /// terms join the functions under one pressure function (p spans wide),
+    /// 0 otherwise.
+    pub fn reach(&self, d: usize) -> usize {
+        match self.formulation {
+            Formulation::Mixed => self.degree[d].saturating_sub(1),
+            Formulation::Displacement | Formulation::LocalMixed => 0,
+        }
+    }
+
+    /// Upper bound on the stiffness non-zeros: 2p + 1 coupled functions
+    /// per direction, 2(p + reach) + 1 with the mixed stencil.
     pub fn nonzeros(&self) -> f64 {
         let dir = |d: usize| {
             let n = self.n[d] as f64;
-            (n * (2 * self.degree[d] + 1) as f64).min(n * n)
+            (n * (2 * (self.degree[d] + self.reach(d)) + 1) as f64).min(n * n)
         };
         4.0 * dir(0) * dir(1)
+    }
+
+    /// The degree whose stencil is as wide as this body's: the factor's
+    /// fill ([`factor_entries`]) follows the stencil, so the mixed body of
+    /// degree p fills like a displacement body of degree 2p − 1.
+    pub fn stencil_degree(&self) -> usize {
+        (0..2)
+            .map(|d| self.degree[d] + self.reach(d))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Bytes of the mixed formulation's pressure space while the stiffness
+    /// is built: per pressure function (about one per control point) its
+    /// divergence functional over the 2p × 2q control points of its
+    /// support, two DOFs each, 16 bytes an entry.
+    pub fn pressure_bytes(&self) -> f64 {
+        match self.formulation {
+            Formulation::Mixed => {
+                let support = (2 * self.degree[0] * 2 * self.degree[1]) as f64;
+                self.control_points() * 2.0 * support * 16.0
+            }
+            Formulation::Displacement | Formulation::LocalMixed => 0.0,
+        }
     }
 }
 
@@ -192,14 +231,15 @@ impl Estimate {
         };
         let factor: f64 = bodies
             .iter()
-            .map(|b| factor_entries(2.0 * b.control_points(), b.degree[0].max(b.degree[1])))
+            .map(|b| factor_entries(2.0 * b.control_points(), b.stencil_degree()))
             .sum();
         let layer: f64 = pairs.iter().map(|p| p.layer).sum::<f64>().min(dofs);
         // The stiffness: values and row indices.
         let k = 16.0 * nnz;
         // The pattern: the coupling pairs, listed and sorted, while the
         // stiffness is built.
-        let pattern = 32.0 * couplings + k;
+        let pressure: f64 = bodies.iter().map(BodySize::pressure_bytes).sum();
+        let pattern = 32.0 * couplings + k + pressure;
         // The factorisation: the stiffness, the bulk-plus-penalty values
         // and the AMD pattern of the interior, the factor, and the dense
         // matrices of the layer.

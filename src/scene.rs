@@ -1339,6 +1339,7 @@ impl Scene {
             degree: [p0, p1],
             elements: [e0, e1],
             side_elements: [e1, e0],
+            formulation: b.formulation,
         })
     }
 

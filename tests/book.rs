@@ -311,6 +311,11 @@ const TYPED_ON_PURPOSE: &[(&str, &str, &str)] = &[
         "the convergence test's bound on the measured rates",
     ),
     ("error_vs_time.md", "5 %", "an accuracy target"),
+    (
+        "incompressibility.md",
+        "2 %",
+        "issue 20's tolerance on Hertz, a requirement",
+    ),
     ("error_vs_time.md", "1 %", "an accuracy target"),
     ("error_vs_time.md", "0.1 %", "an accuracy target"),
     ("gap.md", "15 %", "how far the sketch lifts the arc"),

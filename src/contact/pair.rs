@@ -365,8 +365,19 @@ fn set_trace_constant(
 /// splits exactly into element parts, and σ_n on the element depends on the
 /// element's own DOFs v_e and on the t_i of its pressure functions, which
 /// the DOFs of the neighbouring elements set independently of v_e. So the
-/// constant is that of the energy diag(K_dev,e, κ diag(∫_e N̂_i)) over
+/// constant is that of an energy diag(K_dev,e, w diag(∫_e N̂_i)) over
 /// (v_e, t), with σ_n(v) = s_dev·v_e + κ Σ_i N̂_i(x) t_i.
+///
+/// The weight w is not κ alone. In terms of the pressure p = κ t the
+/// volumetric energy is ‖p‖²/κ, which vanishes as ν → ½: the constant then
+/// grows like κ/h and the sharp penalty with it, to thousands of times Eq. (11)
+/// at ν = 0.49999, a stiff penalty that spoils p₀ at the edge of the
+/// contact. But the pressure of this space is also held by the inf-sup
+/// condition, which bounds ‖p‖ by the deviatoric energy, ‖p‖²/(2μ) up to a
+/// constant of order one; as for Nitsche's method in Stokes flow (Freund &
+/// Stenberg 1995), the penalty then scales with the shear modulus. The
+/// energy takes the stronger of the two controls,
+/// w = κ · max(1, κ/(2μ)): κ itself while κ ≤ 2μ (ν ≤ 2/7).
 fn mixed_trace_constant(
     slave: &Body,
     be: &crate::space::BoundaryElement,
@@ -384,8 +395,9 @@ fn mixed_trace_constant(
     let k = n + active.len();
     let mut energy = nalgebra::DMatrix::zeros(k, k);
     energy.view_mut((0, 0), (n, n)).copy_from(&dev);
+    let weight = kappa * (kappa / (2.0 * mu)).max(1.0);
     for (j, &(_, me)) in active.iter().enumerate() {
-        energy[(n + j, n + j)] = kappa * me;
+        energy[(n + j, n + j)] = weight * me;
     }
     let mut rigid = nalgebra::DMatrix::zeros(k, 3);
     rigid.view_mut((0, 0), (n, 3)).copy_from(&rigid_modes(cps));
