@@ -8,9 +8,10 @@
 //!
 //! symmetric positive definite whenever contact over the whole boundary
 //! holds the bodies, every kernel is A₀ plus a matrix on L × L.
-//! [`Condensation`] factorises A₀ once by sparse Cholesky, with the
-//! interior I ordered by AMD and L ordered last. Then the trailing ℓ × ℓ
-//! block of the factor gives the Schur complement
+//! [`Condensation`] factorises A₀ once by sparse Cholesky, with L ordered
+//! last and the interior I by AMD on the graph of A₀ with L made a clique
+//! ([`layer_last_order`]). Then the trailing ℓ × ℓ block of the factor
+//! gives the Schur complement
 //!
 //!   S₀ = A_LL − A_LI A_II⁻¹ A_IL = L_LL L_LLᵀ
 //!
@@ -21,7 +22,8 @@
 //! by b ↦ (b̂_L ↦ (S₀ + C)⁻¹ b̂_L ↦ interior), with one dense factorisation
 //! of S₀ + C per kernel.
 //!
-//! Cost: one sparse Cholesky (the layer-last order adds some fill), ℓ³/3
+//! Cost: one sparse Cholesky (the layer-last order adds a few per cent of
+//! fill to the unconstrained AMD order), ℓ³/3
 //! flops for S₀, ℓ² doubles for it; per vector, one sparse triangular pass
 //! each way.
 
@@ -57,44 +59,89 @@ fn singular(what: &str, e: impl std::fmt::Debug) -> Error {
     Error::Singular(format!("{what}: {e:?}"))
 }
 
-/// The approximate-minimum-degree order of the principal submatrix of
-/// `pattern` on the DOFs `keep` (increasing), as indices into `keep`.
-fn amd_order(pattern: SymbolicSparseColMatRef<'_, usize>, keep: &[usize]) -> Result<Vec<usize>> {
+/// A fill-reducing order of `pattern` (n × n, symmetric, both triangles)
+/// with the DOFs `layer` (increasing, distinct) last: the interior by
+/// approximate minimum degree, then the layer in its own order.
+///
+/// The interior is ordered on the whole graph with the layer made a
+/// clique — the block it becomes in the factor anyway, since S₀ is dense.
+/// A layer node then has degree ℓ or more from the start, so minimum degree
+/// leaves the layer to the end, as the factorisation will, and every
+/// interior degree counts the layer neighbours whose rows its column will
+/// fill. Ordering the interior on its own graph instead (blind to those
+/// rows) costs about half as many flops again in the factorisation
+/// (Hertz p = 2, 256²: 3.9·10¹⁰ against 2.7·10¹⁰, 2.5·10¹⁰ for the
+/// unconstrained order).
+fn layer_last_order(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    layer: &[usize],
+) -> Result<Vec<usize>> {
     let n = pattern.nrows();
-    let m = keep.len();
-    if m == 0 {
-        return Ok(Vec::new());
+    let mut in_layer = vec![false; n];
+    for &i in layer {
+        in_layer[i] = true;
     }
-    let mut at = vec![usize::MAX; n];
-    for (k, &i) in keep.iter().enumerate() {
-        at[i] = k;
-    }
-    let mut col_ptr = Vec::with_capacity(m + 1);
+    // the upper triangle (AMD reads the pattern of A + Aᵀ) with the layer
+    // block replaced by a full one
+    let mut col_ptr = Vec::with_capacity(n + 1);
     let mut row_idx = Vec::new();
     col_ptr.push(0);
-    for &j in keep {
-        row_idx.extend(
-            pattern
-                .row_idx_of_col(j)
-                .map(|i| at[i])
-                .filter(|&k| k != usize::MAX),
-        );
+    let mut next_layer = 0;
+    for j in 0..n {
+        let rows = pattern.row_idx_of_col(j).take_while(|&i| i <= j);
+        if in_layer[j] {
+            next_layer += 1;
+            let clique = &layer[..next_layer];
+            merge_sorted(rows.filter(|&i| !in_layer[i]), clique, &mut row_idx);
+        } else {
+            row_idx.extend(rows);
+        }
         col_ptr.push(row_idx.len());
     }
     let nnz = row_idx.len();
-    let sub = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
-    let (mut fwd, mut inv) = (vec![0usize; m], vec![0usize; m]);
-    let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_scratch::<usize>(m, nnz))
+    let graph = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
+    let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_scratch::<usize>(n, nnz))
         .map_err(|e| Error::OutOfMemory(format!("the AMD workspace: {e:?}")))?;
+    // AMD sets rows of degree above dense·√n aside, unordered, as dense; the
+    // layer's (ℓ and more) must stay in the graph for their degrees to count
+    let control = faer::sparse::linalg::amd::Control {
+        dense: (2.0 * layer.len() as f64 / (n as f64).sqrt()).max(10.0),
+        ..Default::default()
+    };
     faer::sparse::linalg::amd::order(
         &mut fwd,
         &mut inv,
-        sub.as_ref(),
-        Default::default(),
+        graph.as_ref(),
+        control,
         MemStack::new(&mut mem),
     )
     .map_err(|e| singular("AMD ordering", e))?;
-    Ok(fwd)
+    drop(mem);
+    Ok(fwd
+        .into_iter()
+        .filter(|&i| !in_layer[i])
+        .chain(layer.iter().copied())
+        .collect())
+}
+
+/// Appends the union of two increasing sequences to `out`, increasing.
+fn merge_sorted(a: impl Iterator<Item = usize>, b: &[usize], out: &mut Vec<usize>) {
+    let mut a = a.peekable();
+    let mut b = b.iter().copied().peekable();
+    loop {
+        let next = match (a.peek(), b.peek()) {
+            (Some(&x), Some(&y)) if x < y => a.next(),
+            (Some(&x), Some(&y)) if x == y => {
+                b.next();
+                a.next()
+            }
+            (_, Some(_)) => b.next(),
+            (Some(_), None) => a.next(),
+            (None, None) => break,
+        };
+        out.extend(next);
+    }
 }
 
 impl Condensation {
@@ -105,17 +152,7 @@ impl Condensation {
     pub fn new(a0: SparseColMatRef<'_, usize, f64>, layer: Vec<usize>) -> Result<Self> {
         let n = a0.nrows();
         let ell = layer.len();
-        let mut in_layer = vec![false; n];
-        for &i in &layer {
-            in_layer[i] = true;
-        }
-        let interior: Vec<usize> = (0..n).filter(|&i| !in_layer[i]).collect();
-        let order = amd_order(a0.symbolic(), &interior)?;
-        let fwd: Vec<usize> = order
-            .iter()
-            .map(|&k| interior[k])
-            .chain(layer.iter().copied())
-            .collect();
+        let fwd = layer_last_order(a0.symbolic(), &layer)?;
         let mut inv = vec![0usize; n];
         for (new, &old) in fwd.iter().enumerate() {
             inv[old] = new;
@@ -407,22 +444,27 @@ mod tests {
 
     /// A 2D 5-point Laplacian on an m × m grid plus a diagonal shift: SPD.
     fn laplacian(m: usize) -> SparseColMat<usize, f64> {
+        grid_laplacian(m, m)
+    }
+
+    /// The same on an m × r grid (r rows of m nodes, node i + m j).
+    fn grid_laplacian(m: usize, r: usize) -> SparseColMat<usize, f64> {
         let id = |i: usize, j: usize| i + m * j;
         let mut t = Vec::new();
-        for j in 0..m {
+        for j in 0..r {
             for i in 0..m {
                 t.push(Triplet::new(id(i, j), id(i, j), 4.2));
                 if i + 1 < m {
                     t.push(Triplet::new(id(i, j), id(i + 1, j), -1.0));
                     t.push(Triplet::new(id(i + 1, j), id(i, j), -1.0));
                 }
-                if j + 1 < m {
+                if j + 1 < r {
                     t.push(Triplet::new(id(i, j), id(i, j + 1), -1.0));
                     t.push(Triplet::new(id(i, j + 1), id(i, j), -1.0));
                 }
             }
         }
-        SparseColMat::try_new_from_triplets(m * m, m * m, &t).unwrap()
+        SparseColMat::try_new_from_triplets(m * r, m * r, &t).unwrap()
     }
 
     #[test]
@@ -460,6 +502,80 @@ mod tests {
         let want = full.partial_piv_lu().solve(&b);
         let err = (&got - &want).norm_max() / want.norm_max();
         assert!(err <= 1e-12, "block solve: {err:.2e}");
+    }
+
+    /// Stored entries of the supernodal factor of `a` in the order `fwd`.
+    fn factor_entries(a: &SparseColMat<usize, f64>, fwd: &[usize]) -> usize {
+        let n = fwd.len();
+        let mut inv = vec![0; n];
+        for (k, &i) in fwd.iter().enumerate() {
+            inv[i] = k;
+        }
+        let sym = factorize_symbolic_cholesky(
+            a.symbolic(),
+            faer::Side::Lower,
+            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(fwd, &inv, n)),
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        sym.len_val()
+    }
+
+    /// The unconstrained AMD order of `a`.
+    fn amd(a: &SparseColMat<usize, f64>) -> Vec<usize> {
+        let n = a.nrows();
+        let (mut f, mut i) = (vec![0; n], vec![0; n]);
+        let req = faer::sparse::linalg::amd::order_scratch::<usize>(n, a.val().len());
+        let mut mem = MemBuffer::new(req);
+        faer::sparse::linalg::amd::order(
+            &mut f,
+            &mut i,
+            a.symbolic(),
+            Default::default(),
+            MemStack::new(&mut mem),
+        )
+        .unwrap();
+        f
+    }
+
+    /// The layer-last order fills the factor little more than AMD free to
+    /// place the layer anywhere, and less than AMD of the interior alone
+    /// with the layer appended.
+    #[test]
+    fn the_layer_last_order_adds_little_fill() {
+        let m = 60;
+        let a = laplacian(m);
+        let n = m * m;
+        // the bottom two grid rows: a contact layer
+        let layer: Vec<usize> = (0..2 * m).collect();
+        let fwd = layer_last_order(a.symbolic(), &layer).unwrap();
+        assert_eq!(&fwd[n - layer.len()..], &layer[..]);
+        let mut seen = vec![false; n];
+        fwd.iter().for_each(|&i| seen[i] = true);
+        assert!(seen.iter().all(|&s| s), "a permutation");
+        let constrained = factor_entries(&a, &fwd);
+        let free = factor_entries(&a, &amd(&a));
+        // AMD of the interior's own graph (the grid of the other m − 2
+        // rows), the layer appended
+        let interior: Vec<usize> = (2 * m..n).collect();
+        let blind: Vec<usize> = amd(&grid_laplacian(m, m - 2))
+            .iter()
+            .map(|&k| interior[k])
+            .chain(layer.clone())
+            .collect();
+        let blind = factor_entries(&a, &blind);
+        let c = constrained as f64;
+        assert!(
+            c <= 1.1 * free as f64,
+            "{constrained} against {free} unconstrained"
+        );
+        assert!(
+            c < blind as f64,
+            "{constrained} against {blind} blind to the layer"
+        );
     }
 
     #[test]

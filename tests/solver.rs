@@ -126,7 +126,11 @@ fn a_lifted_disk_lands_on_the_floor() {
 /// The paper's iteration cannot: its tied start glues the block at its
 /// gap, the block then hovers (no active point, ‖R‖ = ‖R₀‖) while BFGS
 /// moves it in small rigid steps, and the first correction is allowed only
-/// after 8 iterations — too late.
+/// after 8 iterations — too late. While it hovers, the secant pair's
+/// y = ΔR is round-off alone, so how many steps hover before one diverges
+/// depends on the last bits of the factorisation (the order of the
+/// Cholesky factor changes it); the first step, from the tied start, always
+/// hovers.
 #[test]
 fn the_paper_iteration_leaves_a_block_hovering_above_a_large_gap() {
     let p = block(0.2 * HEIGHT, [6, 3], PRESSURE);
@@ -134,8 +138,13 @@ fn the_paper_iteration_leaves_a_block_hovering_above_a_large_gap() {
     let iga_contact::Error::NotConverged { history, .. } = err else {
         panic!("{err}")
     };
-    assert!(history.rows[..3].iter().all(|r| r.active_points == 0));
-    assert!(history.rows[..3]
+    let hovering = history
+        .rows
+        .iter()
+        .take_while(|r| r.active_points == 0)
+        .collect::<Vec<_>>();
+    assert!(!hovering.is_empty(), "the first step lands");
+    assert!(hovering
         .iter()
         .all(|r| (r.relative_residual - 1.0).abs() < 1e-9));
 }
