@@ -135,7 +135,11 @@ impl<'a> DofMapBuilder<'a> {
                             crate::interface::Interface::NotMatching(why) => {
                                 return Err(Error::invalid(
                                     format!("body {name:?}"),
-                                    format!("patches {ia} ({}) and {ib} ({})", sa.name(), sb.name()),
+                                    format!(
+                                        "patches {ia} ({}) and {ib} ({})",
+                                        sa.name(),
+                                        sb.name()
+                                    ),
                                     format!(
                                         "the interface does not match ({why}); only matching \
                                          interfaces are built, not Nitsche-tied ones"
