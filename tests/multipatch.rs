@@ -221,3 +221,152 @@ fn non_matching_interface_is_refused_naming_body_and_patches() {
     assert!(msg.contains("disk") && msg.contains("patches 0"), "{msg}");
     assert!(!msg.contains('\n'), "{msg}");
 }
+
+// ------------------------------------------------------------- scenes
+
+use iga_contact::post::hertz::{Cylinder, Hertz};
+use iga_contact::post::PressureProfile;
+use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::solver::{solve, Warning};
+
+/// Hertz's p₀ and a for the disk of the Hertz scenes under `factor` times
+/// their load (the full disk's load: twice the half model's).
+fn hertz(factor: f64) -> Hertz {
+    let material = Material::new(2.0e7, 0.1, Plane::Strain).unwrap();
+    let load = factor * 1.3e6 * PI * R * R;
+    Hertz::new(
+        Cylinder::Elastic {
+            radius: R,
+            material,
+        },
+        Cylinder::RigidPlane,
+        load,
+    )
+}
+
+/// The shipped scene `file`, refined to `n × n`, its body force times
+/// `factor`: (p₀, a, zones, warnings) over its first contact's pieces.
+fn run(file: &str, n: usize, factor: f64) -> (f64, f64, usize, Vec<Warning>) {
+    let mut scene = Scene::shipped(file)
+        .unwrap()
+        .refined("disk", RefineSpec::iga(2, [n, n]))
+        .unwrap();
+    for l in &mut scene.loads {
+        if let assembly::Load::BodyForce { force, .. } = l {
+            force[1] *= factor;
+        }
+    }
+    let problem = scene.build().unwrap();
+    let sol =
+        solve(&problem, &scene.solver).unwrap_or_else(|e| panic!("{file} {n} ×{factor}: {e}"));
+    let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
+    let m = profile.measures_joined(scene.pair_ranges()[0].clone());
+    (m.p0, m.half_width, m.zones, sol.warnings)
+}
+
+#[test]
+fn hertz_multipatch_matches_hertz_like_the_one_patch_scene() {
+    // Both scenes put n elements on the 45° of arc next to the lowest
+    // point, where the contact zone lies: comparable meshes.
+    let h = hertz(1.0);
+    let err = |p0: f64, a: f64| rel(p0, h.p0).max(rel(a, h.half_width));
+    let mut errors = Vec::new();
+    for n in [8, 16] {
+        let (p0, a, zones, _) = run("hertz_multipatch.toml", n, 1.0);
+        let (q0, b, _, _) = run("hertz.toml", n, 1.0);
+        let (multi, single) = (err(p0, a), err(q0, b));
+        assert_eq!(zones, 1);
+        assert!(
+            multi <= 1.25 * single,
+            "{n} × {n}: multi-patch error {multi:e} against one patch {single:e}"
+        );
+        errors.push(multi);
+    }
+    // and it falls under refinement, at least as h² (the measures'
+    // sampling adds its own share)
+    assert!(errors[1] < 0.25 * errors[0], "{errors:?}");
+}
+
+#[test]
+fn heavy_load_crosses_the_join_as_one_zone_without_a_side_end_warning() {
+    let at_side_end = |w: &[Warning]| w.iter().any(|w| matches!(w, Warning::ZoneAtSideEnd { .. }));
+    // 45° up the arc from the lowest point, where the one-patch side ends
+    let corner = R * std::f64::consts::FRAC_1_SQRT_2;
+    for factor in [8.0, 16.0] {
+        let (p0, a, zones, warnings) = run("hertz_multipatch.toml", 8, factor);
+        assert_eq!(zones, 1, "×{factor}");
+        assert!(!at_side_end(&warnings), "×{factor}: {warnings:?}");
+        assert!(p0 > 0.0 && a > 0.0);
+        if factor == 16.0 {
+            // the zone runs past the join at 315° and past where the
+            // one-patch side would end
+            assert!(a > corner, "{a} against {corner}");
+        }
+    }
+}
+
+#[test]
+fn multi_patch_keys_are_checked_with_one_error_line() {
+    let base =
+        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let cases = [
+        // a patch side on a body of several patches
+        (
+            "boundary = \"straight\"",
+            "side = \"xi_min\"",
+            "support[0].side",
+        ),
+        // a boundary the builder does not define
+        (
+            "slave_boundary = \"arc_lower\"",
+            "slave_boundary = \"rim\"",
+            "contact[0].slave_boundary",
+        ),
+        // a point support off the patch corners: the centre
+        (
+            "boundary = \"straight\"",
+            "point = [0.05, 0.2]",
+            "support[0].point",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let text = base.replacen(from, to, 1);
+        let e = Scene::from_toml_str(&text)
+            .and_then(|s| s.build().map(|_| ()))
+            .expect_err(to);
+        let msg = e.to_string();
+        assert!(msg.contains(field), "{to}: {msg}");
+        assert!(!msg.contains('\n'), "{msg}");
+    }
+}
+
+#[test]
+fn point_supports_at_patch_corners_hold_the_body() {
+    // the straight side held by two point supports in x at patch corners
+    // (the core's corners on the diameter) instead of the whole side: the
+    // body is still held (the well-posedness check passes) and in x only
+    // there, so the contact force balances the load
+    let base =
+        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let text = base.replacen(
+        "boundary = \"straight\"\ncomponent = \"x\"\nvalue = 0.0",
+        "point = [0.0, 0.12]\ncomponent = \"x\"\n\n[[support]]\nbody = \"disk\"\npoint = [0.0, 0.28]\ncomponent = \"x\"",
+        1,
+    );
+    assert_ne!(text, base);
+    let scene = Scene::from_toml_str(&text).unwrap();
+    let problem = scene.build().unwrap();
+    let sol = solve(&problem, &scene.solver).unwrap();
+    let f = iga_contact::post::contact_resultant(&problem, &sol.full);
+    let load = 1.3e6 * PI * R * R / 2.0;
+    assert!(rel(f[1], load) < 1e-8, "{f:?}");
+    // without supports the x slide of the whole body, all its patches
+    // together, is free: refused, naming the body
+    let mut none = Scene::from_toml_str(&base).unwrap();
+    none.supports.clear();
+    let e = none.build().err().expect("refused");
+    assert!(
+        e.to_string().contains("body[0]") && e.to_string().contains("slide"),
+        "{e}"
+    );
+}
