@@ -5,6 +5,13 @@
 //! body b. Dirichlet conditions act on control-point values (the paper's
 //! convention); they are eliminated, so the solved system holds only the
 //! free DOFs and no large numbers ever enter the matrix.
+//!
+//! An elastic body of several patches is several [`Body`] entries, one
+//! per patch, joined by [`DofMapBuilder::join`]: the control points that
+//! two patches share on a matching interface keep one global DOF per
+//! patch (so every per-patch loop reads its own numbering), and those
+//! copies map to one free DOF, which makes the displacement C⁰ across.
+//! Non-matching interfaces (tied weakly, by Nitsche) are not built.
 
 use crate::error::{Error, Result};
 use crate::material::{Formulation, Material};
@@ -30,6 +37,11 @@ pub struct DofMap {
     free_of: Vec<usize>,
     prescribed: Vec<f64>,
     n_free: usize,
+    /// The elastic body (group of patches) of every patch.
+    group_of: Vec<usize>,
+    /// The class representative of every global DOF (itself unless a
+    /// matching interface shares it).
+    rep: Vec<usize>,
 }
 
 /// Collects Dirichlet conditions before numbering the free DOFs.
@@ -37,6 +49,11 @@ pub struct DofMapBuilder<'a> {
     bodies: &'a [Body],
     offsets: Vec<usize>,
     fixed: Vec<Option<f64>>,
+    group_of: Vec<usize>,
+    /// Union–find parent of every global DOF, and the next member of its
+    /// class (a circular list, to fix every copy of a shared DOF at once).
+    parent: Vec<usize>,
+    next: Vec<usize>,
 }
 
 impl<'a> DofMapBuilder<'a> {
@@ -61,7 +78,96 @@ impl<'a> DofMapBuilder<'a> {
             ));
         }
         crate::error::finite("support.value", value)?;
-        self.fixed[self.offsets[body] + 2 * cp + comp] = Some(value);
+        let g0 = self.offsets[body] + 2 * cp + comp;
+        let mut g = g0;
+        loop {
+            self.fixed[g] = Some(value);
+            g = self.next[g];
+            if g == g0 {
+                break;
+            }
+        }
+        Ok(self)
+    }
+
+    fn find(&mut self, mut g: usize) -> usize {
+        while self.parent[g] != g {
+            self.parent[g] = self.parent[self.parent[g]];
+            g = self.parent[g];
+        }
+        g
+    }
+
+    /// Makes global DOFs `a` and `b` one unknown.
+    fn unite(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra == rb {
+            return;
+        }
+        let (lo, hi) = (ra.min(rb), ra.max(rb));
+        self.parent[hi] = lo;
+        self.next.swap(a, b);
+    }
+
+    /// Makes the patches `patches` (indices into the bodies) one elastic
+    /// body: every pair of sides that match (the same knots along the
+    /// side, coincident control points and weights, either way round)
+    /// shares its control points. Call it before any `fix`. Fails, naming
+    /// the body and the patches, when two sides meet end to end without
+    /// matching or a patch shares no side with the others.
+    pub fn join(&mut self, name: &str, patches: &[usize]) -> Result<&mut Self> {
+        let group = self.group_of[patches[0]];
+        for &p in patches {
+            self.group_of[p] = group;
+        }
+        let size = patches
+            .iter()
+            .map(|&p| crate::interface::extent(&self.bodies[p].space.patch))
+            .fold(0.0, f64::max);
+        let mut joined = vec![patches.len() == 1; patches.len()];
+        for (ia, &a) in patches.iter().enumerate() {
+            for (ib, &b) in patches.iter().enumerate().skip(ia + 1) {
+                let (pa, pb) = (&self.bodies[a].space.patch, &self.bodies[b].space.patch);
+                for sa in Side::ALL {
+                    for sb in Side::ALL {
+                        let shared = match crate::interface::matching(pa, sa, pb, sb, size) {
+                            crate::interface::Interface::Apart => continue,
+                            crate::interface::Interface::NotMatching(why) => {
+                                return Err(Error::invalid(
+                                    format!("body {name:?}"),
+                                    format!(
+                                        "patches {ia} ({}) and {ib} ({})",
+                                        sa.name(),
+                                        sb.name()
+                                    ),
+                                    format!(
+                                        "the interface does not match ({why}); only matching \
+                                         interfaces are built, not Nitsche-tied ones"
+                                    ),
+                                ));
+                            }
+                            crate::interface::Interface::Matching(pairs) => pairs,
+                        };
+                        joined[ia] = true;
+                        joined[ib] = true;
+                        for (ca, cb) in shared {
+                            for c in 0..2 {
+                                let (ga, gb) =
+                                    (self.offsets[a] + 2 * ca + c, self.offsets[b] + 2 * cb + c);
+                                self.unite(ga, gb);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(i) = joined.iter().position(|j| !j) {
+            return Err(Error::invalid(
+                format!("body {name:?}"),
+                format!("patch {i}"),
+                "shares no side with the other patches of the body",
+            ));
+        }
         Ok(self)
     }
 
@@ -103,24 +209,50 @@ impl<'a> DofMapBuilder<'a> {
     }
 
     pub fn build(&self) -> DofMap {
-        let mut free_of = vec![FIXED; self.fixed.len()];
-        let mut prescribed = vec![0.0; self.fixed.len()];
-        let mut n_free = 0;
-        for (g, f) in self.fixed.iter().enumerate() {
-            match f {
-                Some(v) => prescribed[g] = *v,
-                None => {
-                    free_of[g] = n_free;
-                    n_free += 1;
-                }
+        let root = |mut g: usize| {
+            while self.parent[g] != g {
+                g = self.parent[g];
             }
+            g
+        };
+        let rep: Vec<usize> = (0..self.fixed.len()).map(root).collect();
+        number(
+            self.offsets.clone(),
+            &self.fixed,
+            rep,
+            self.group_of.clone(),
+        )
+    }
+}
+
+/// Numbers the free DOFs in the order of their class representatives
+/// (which precede every other member): without shared DOFs, in global order.
+fn number(
+    offsets: Vec<usize>,
+    fixed: &[Option<f64>],
+    rep: Vec<usize>,
+    group_of: Vec<usize>,
+) -> DofMap {
+    let mut free_of = vec![FIXED; fixed.len()];
+    let mut prescribed = vec![0.0; fixed.len()];
+    let mut n_free = 0;
+    for (g, f) in fixed.iter().enumerate() {
+        match f {
+            Some(v) => prescribed[g] = *v,
+            None if rep[g] == g => {
+                free_of[g] = n_free;
+                n_free += 1;
+            }
+            None => free_of[g] = free_of[rep[g]],
         }
-        DofMap {
-            offsets: self.offsets.clone(),
-            free_of,
-            prescribed,
-            n_free,
-        }
+    }
+    DofMap {
+        offsets,
+        free_of,
+        prescribed,
+        n_free,
+        group_of,
+        rep,
     }
 }
 
@@ -138,7 +270,61 @@ impl DofMap {
             bodies,
             offsets,
             fixed: vec![None; n],
+            group_of: (0..bodies.len()).collect(),
+            parent: (0..n).collect(),
+            next: (0..n).collect(),
         }
+    }
+
+    /// True when some patches share DOFs (a body of several patches).
+    pub fn is_linked(&self) -> bool {
+        self.rep.iter().enumerate().any(|(g, &r)| r != g)
+    }
+
+    /// The elastic body that patch `b` belongs to (`b` itself unless
+    /// [`DofMapBuilder::join`] joined it to others; then the first patch).
+    pub fn group(&self, b: usize) -> usize {
+        self.group_of[b]
+    }
+
+    /// The patches of every elastic body, in patch order.
+    pub fn groups(&self) -> Vec<Vec<usize>> {
+        let mut out: Vec<Vec<usize>> = Vec::new();
+        let mut at = vec![usize::MAX; self.group_of.len()];
+        for (b, &g) in self.group_of.iter().enumerate() {
+            if at[g] == usize::MAX {
+                at[g] = out.len();
+                out.push(Vec::new());
+            }
+            out[at[g]].push(b);
+        }
+        out
+    }
+
+    /// The same map with every shared DOF split into one free DOF per
+    /// patch, and for each of its free DOFs the free DOF of `self` it
+    /// folds into: the per-patch assembly runs on the split map, and
+    /// [`crate::interface::fold`] sums its matrix into this one.
+    pub fn unlinked(&self) -> (DofMap, Vec<usize>) {
+        let fixed: Vec<Option<f64>> = self
+            .free_of
+            .iter()
+            .zip(&self.prescribed)
+            .map(|(&f, &v)| (f == FIXED).then_some(v))
+            .collect();
+        let split = number(
+            self.offsets.clone(),
+            &fixed,
+            (0..fixed.len()).collect(),
+            self.group_of.clone(),
+        );
+        let mut into = vec![0; split.n_free];
+        for (g, &f) in split.free_of.iter().enumerate() {
+            if f != FIXED {
+                into[f] = self.free_of[g];
+            }
+        }
+        (split, into)
     }
 
     pub fn n_total(&self) -> usize {

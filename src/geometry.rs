@@ -177,3 +177,203 @@ pub fn lagrange_interpolant(
     let [k0, k1]: [KnotVector; 2] = knots.try_into().expect("two directions");
     NurbsPatch::new([k0, k1], points, vec![1.0; n0 * n1])
 }
+
+/// A body of several patches with matching interfaces, and its named
+/// boundaries: each a list of (patch, side) joined end to end, in order
+/// along the boundary.
+#[derive(Clone, Debug)]
+pub struct MultiPatch {
+    pub patches: Vec<NurbsPatch>,
+    pub boundaries: Vec<(&'static str, Vec<(usize, crate::nurbs::Side)>)>,
+    /// Per patch and parametric direction, which count of a refinement
+    /// `elements = [along, across]` it takes (see [`MultiPatch::refined`]).
+    pub counts: Vec<[Count; 2]>,
+}
+
+/// Which of the two element counts of a multi-patch refinement a patch
+/// direction takes: the count along the circle (and along the core's
+/// sides, which face arcs) or the count across the arc patches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Count {
+    Along,
+    Across,
+}
+
+impl MultiPatch {
+    /// Every patch k-refined to `degree` with `elements = [along, across]`
+    /// distributed by [`MultiPatch::counts`], so that every interface
+    /// keeps matching.
+    pub fn refined(&self, degree: usize, elements: [usize; 2]) -> Result<Vec<NurbsPatch>> {
+        self.patches
+            .iter()
+            .zip(&self.counts)
+            .map(|(p, c)| p.k_refined(degree, self.divisions(c, elements)))
+            .collect()
+    }
+
+    /// The element counts per direction of a patch of counts `c`.
+    pub fn divisions(&self, c: &[Count; 2], elements: [usize; 2]) -> [usize; 2] {
+        c.map(|d| match d {
+            Count::Along => elements[0],
+            Count::Across => elements[1],
+        })
+    }
+
+    /// The pieces of the boundary called `name`, if the builder defines it.
+    pub fn boundary(&self, name: &str) -> Option<&[(usize, crate::nurbs::Side)]> {
+        self.boundaries
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, b)| b.as_slice())
+    }
+
+    /// The names of the boundaries, for messages.
+    pub fn boundary_names(&self) -> Vec<&'static str> {
+        self.boundaries.iter().map(|(n, _)| *n).collect()
+    }
+}
+
+/// Half the side of the square core of [`disk_5`], as a share of the radius:
+/// the core's corners sit at 0.4·√2 ≈ 0.57 of the radius, so the four arc
+/// patches are of about the core's size and no element is squeezed.
+const CORE: f64 = 0.4;
+
+/// A patch between a straight inner segment and a circular arc of at
+/// most 90° about the origin of the unit disk: ξ along both (quadratic,
+/// with the arc's weights on both rows, so the segment is straight), η
+/// from the segment (η = 0) to the arc (η = 1), linear. Rows: `inner`
+/// then `outer`, each three control points.
+fn arc_patch(inner: [[f64; 2]; 3], outer: [[f64; 2]; 3], w: f64) -> Result<NurbsPatch> {
+    let lin = KnotVector::new(vec![0.0, 0.0, 1.0, 1.0], 1).expect("static knots");
+    let points = inner.iter().chain(&outer).copied().collect();
+    NurbsPatch::new(
+        [quadratic_single_span(), lin],
+        points,
+        vec![1.0, w, 1.0, 1.0, w, 1.0],
+    )
+}
+
+/// Scales the unit-disk patches to radius `r` about `center`.
+fn placed(patches: Vec<NurbsPatch>, center: [f64; 2], r: f64) -> Vec<NurbsPatch> {
+    patches
+        .into_iter()
+        .map(|p| p.transformed(|x| [center[0] + r * x[0], center[1] + r * x[1]]))
+        .collect()
+}
+
+/// The five patches of the unit disk: the core square [−a, a]² (ξ along x,
+/// η along y, quadratic with the arcs' weights so its sides match theirs)
+/// and the arc patches below, right, above and left of it, each between a
+/// side of the core and a 90° arc (ξ counter-clockwise along the arc, η
+/// outward). `top_clockwise` runs the upper arc patch's ξ the other way
+/// (for [`half_disk_4`], which keeps its right half).
+fn unit_disk_5(top_clockwise: bool) -> Result<Vec<NurbsPatch>> {
+    let a = CORE;
+    let q = std::f64::consts::SQRT_2;
+    let mut core_pts = Vec::new();
+    let mut core_w = Vec::new();
+    let u = [1.0, S, 1.0];
+    for (j, y) in [-a, 0.0, a].iter().enumerate() {
+        for (i, x) in [-a, 0.0, a].iter().enumerate() {
+            core_pts.push([*x, *y]);
+            core_w.push(u[i] * u[j]);
+        }
+    }
+    let core = NurbsPatch::new(
+        [quadratic_single_span(), quadratic_single_span()],
+        core_pts,
+        core_w,
+    )?;
+    let bottom = arc_patch(
+        [[-a, -a], [0.0, -a], [a, -a]],
+        [[-S, -S], [0.0, -q], [S, -S]],
+        S,
+    )?;
+    let right = arc_patch([[a, -a], [a, 0.0], [a, a]], [[S, -S], [q, 0.0], [S, S]], S)?;
+    let top = if top_clockwise {
+        arc_patch([[-a, a], [0.0, a], [a, a]], [[-S, S], [0.0, q], [S, S]], S)?
+    } else {
+        arc_patch([[a, a], [0.0, a], [-a, a]], [[S, S], [0.0, q], [-S, S]], S)?
+    };
+    let left = arc_patch(
+        [[-a, a], [-a, 0.0], [-a, -a]],
+        [[-S, S], [-q, 0.0], [-S, -S]],
+        S,
+    )?;
+    Ok(vec![core, bottom, right, top, left])
+}
+
+/// The disk of radius `r` about `center` as five patches without a
+/// singular point: a square core (patch 0) and four arc patches, below
+/// (1), right (2), above (3) and left (4) of it, each spanning 90° of the
+/// circle between the directions 225°, 315°, 45° and 135°; every circle is
+/// exact. Boundaries: `arc` (the whole circle, counter-clockwise from
+/// 225°), `arc_bottom`, `arc_right`, `arc_top`, `arc_left` (one arc patch
+/// each) and `arc_lower` (135° through 270° to 45°: left, bottom, right).
+///
+/// Refined with `elements = [n, m]`, every arc patch gets n elements along
+/// its arc and m across, and the core n × n, so that every interface
+/// matches.
+pub fn disk_5(center: [f64; 2], r: f64) -> Result<MultiPatch> {
+    check_positive("radius", r)?;
+    use crate::nurbs::Side::EtaMax;
+    Ok(MultiPatch {
+        patches: placed(unit_disk_5(false)?, center, r),
+        boundaries: vec![
+            (
+                "arc",
+                vec![(1, EtaMax), (2, EtaMax), (3, EtaMax), (4, EtaMax)],
+            ),
+            ("arc_bottom", vec![(1, EtaMax)]),
+            ("arc_right", vec![(2, EtaMax)]),
+            ("arc_top", vec![(3, EtaMax)]),
+            ("arc_left", vec![(4, EtaMax)]),
+            ("arc_lower", vec![(4, EtaMax), (1, EtaMax), (2, EtaMax)]),
+        ],
+        counts: arc_counts(5),
+    })
+}
+
+/// The half disk {x ≥ cx} of radius `r` about `center` as four patches
+/// without a singular point: the right halves of [`disk_5`]'s core
+/// (patch 0), lower arc patch (1, from 270° to 315°) and upper arc patch
+/// (3, from 90° to 45°), and its right arc patch (2, from 315° to 45°).
+/// Boundaries: `straight` (the diameter on x = cx: the sides ξ = 0 of
+/// patches 1, 0 and 3), `arc` (270° to 90°), `arc_lower` (270° to 45°:
+/// patches 1 and 2) and `arc_bottom` (patch 1 alone).
+///
+/// Four is the fewest: quadrilaterals that meet side to side with no
+/// corner of 180° (where det J would vanish) cannot tile a half disk in
+/// three, since its two 90° corners leave an odd number of ends for the
+/// interior edges. Refined with `elements = [n, m]`, every patch gets n
+/// elements along the circle (and along each side of the core) and m
+/// across the arc patches.
+pub fn half_disk_4(center: [f64; 2], r: f64) -> Result<MultiPatch> {
+    check_positive("radius", r)?;
+    use crate::nurbs::Side::{EtaMax, XiMin};
+    let full = unit_disk_5(true)?;
+    let patches = vec![
+        full[0].upper_part_xi(0.5)?,
+        full[1].upper_part_xi(0.5)?,
+        full[2].clone(),
+        full[3].upper_part_xi(0.5)?,
+    ];
+    Ok(MultiPatch {
+        patches: placed(patches, center, r),
+        boundaries: vec![
+            ("straight", vec![(1, XiMin), (0, XiMin), (3, XiMin)]),
+            ("arc", vec![(1, EtaMax), (2, EtaMax), (3, EtaMax)]),
+            ("arc_lower", vec![(1, EtaMax), (2, EtaMax)]),
+            ("arc_bottom", vec![(1, EtaMax)]),
+        ],
+        counts: arc_counts(4),
+    })
+}
+
+/// The core (patch 0) takes the count along the circle both ways, the arc
+/// patches along their arc and across.
+fn arc_counts(n: usize) -> Vec<[Count; 2]> {
+    let mut c = vec![[Count::Along, Count::Across]; n];
+    c[0] = [Count::Along, Count::Along];
+    c
+}

@@ -170,6 +170,22 @@ impl PressureProfile {
         ContactMeasures::of(&regular, self.side_ends[pair])
     }
 
+    /// As [`PressureProfile::measures`], over the consecutive pairs
+    /// `pairs` taken as one slave boundary joined end to end (the pieces of
+    /// a multi-patch boundary, each running on from the last): one zone
+    /// crossing a join is one zone, and the boundary's own ends are the
+    /// first piece's start and the last piece's end.
+    pub fn measures_joined(&self, pairs: std::ops::Range<usize>) -> ContactMeasures {
+        let ends = [
+            self.side_ends[pairs.start][0],
+            self.side_ends[pairs.end - 1][1],
+        ];
+        let regular: Vec<ProfileSample> = pairs
+            .flat_map(|k| self.pair(k).iter().filter(|s| s.regular).copied())
+            .collect();
+        ContactMeasures::of(&regular, ends)
+    }
+
     /// The largest pressure of pair `pair` over its regular samples: the
     /// profile's own maximum, which the measures' p₀ does not exceed.
     pub fn max_pressure(&self, pair: usize) -> f64 {

@@ -101,7 +101,20 @@ impl Problem {
         }
         // body forces share the stiffness's quadrature
         let (forces, others) = split_body_forces(&bodies, loads)?;
-        let Bulk { k, lift, body_load } = stiffness_matrix(&bodies, &map, &couplings, &forces)?;
+        let Bulk { k, lift, body_load } = if map.is_linked() {
+            // patches sharing control points: assembled per patch on the
+            // split numbering, then summed into the shared unknowns
+            let (split, into) = map.unlinked();
+            let bulk = stiffness_matrix(&bodies, &split, &[], &forces)?;
+            let n = map.n_free();
+            Bulk {
+                k: crate::interface::fold(&bulk.k, &into, n, &couplings)?,
+                lift: crate::interface::fold_vec(&bulk.lift, &into, n),
+                body_load: crate::interface::fold_vec(&bulk.body_load, &into, n),
+            }
+        } else {
+            stiffness_matrix(&bodies, &map, &couplings, &forces)?
+        };
         let mut rhs = load_vector(&bodies, &map, &others)?;
         for ((r, l), b) in rhs.iter_mut().zip(&lift).zip(&body_load) {
             *r += b - l;
@@ -405,17 +418,20 @@ impl Problem {
     }
 
     /// Rigid-body modes (full-length vectors, one per mode) that the
-    /// supports leave free: only contact can hold these.
+    /// supports leave free: only contact can hold these. A body of several
+    /// patches moves as one.
     pub fn floating_modes(&self) -> Vec<Vec<f64>> {
         let mut modes = Vec::new();
-        for (b, body) in self.bodies.iter().enumerate() {
-            let basis = RigidBasis::of(body);
-            for coef in free_modes(body, b, &self.map, &basis) {
+        for group in self.map.groups() {
+            let basis = RigidBasis::of_patches(&self.bodies, &group);
+            for coef in free_modes(&self.bodies, &group, &self.map, &basis) {
                 let mut v = vec![0.0; self.map.n_total()];
-                for (a, p) in body.space.patch.points.iter().enumerate() {
-                    for comp in 0..2 {
-                        v[self.map.global(b, a, comp)] =
-                            (0..3).map(|m| coef[m] * basis.value(m, *p, comp)).sum();
+                for &b in &group {
+                    for (a, p) in self.bodies[b].space.patch.points.iter().enumerate() {
+                        for comp in 0..2 {
+                            v[self.map.global(b, a, comp)] =
+                                (0..3).map(|m| coef[m] * basis.value(m, *p, comp)).sum();
+                        }
                     }
                 }
                 modes.push(v);

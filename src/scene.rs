@@ -130,6 +130,16 @@ pub enum GeometrySpec {
     FullDisk { center: [f64; 2], radius: f64 },
     /// The half x ≥ center.x of the disk.
     HalfDisk { center: [f64; 2], radius: f64 },
+    /// The disk as five patches without a singular point
+    /// ([`geometry::disk_5`]); boundaries `arc`, `arc_bottom`, `arc_right`,
+    /// `arc_top`, `arc_left`, `arc_lower`.
+    #[serde(rename = "disk_5")]
+    Disk5 { center: [f64; 2], radius: f64 },
+    /// The half x ≥ center.x of the disk as four patches without a
+    /// singular point ([`geometry::half_disk_4`]); boundaries `straight`,
+    /// `arc`, `arc_lower`, `arc_bottom`.
+    #[serde(rename = "half_disk_4")]
+    HalfDisk4 { center: [f64; 2], radius: f64 },
     /// The quarter annulus in the first quadrant about the origin.
     QuarterAnnulus {
         inner_radius: f64,
@@ -190,7 +200,16 @@ impl Component {
 #[serde(deny_unknown_fields)]
 pub struct SupportSpec {
     pub body: String,
-    pub side: Side,
+    /// A side of a one-patch body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<Side>,
+    /// A named boundary of a multi-patch body (every piece of it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub boundary: Option<String>,
+    /// A point: the control point of the body nearest it, accepted only
+    /// where that control point lies on the body (a patch corner).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point: Option<[f64; 2]>,
     pub component: Component,
     #[serde(default)]
     pub value: f64,
@@ -215,7 +234,13 @@ fn load_kind<B>(l: &Load<B>) -> &'static str {
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
     pub slave: String,
-    pub slave_side: Side,
+    /// A side of a one-patch slave.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slave_side: Option<Side>,
+    /// A named boundary of a multi-patch slave: one contact pair per
+    /// piece, in order along the boundary.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slave_boundary: Option<String>,
     pub master: MasterSpec,
     /// θ, the penalty factor and the integration rule of the pair.
     #[serde(default)]
@@ -601,6 +626,8 @@ impl GeometrySpec {
             GeometrySpec::Quadrilateral { .. } => "quadrilateral",
             GeometrySpec::FullDisk { .. } => "full_disk",
             GeometrySpec::HalfDisk { .. } => "half_disk",
+            GeometrySpec::Disk5 { .. } => "disk_5",
+            GeometrySpec::HalfDisk4 { .. } => "half_disk_4",
             GeometrySpec::QuarterAnnulus { .. } => "quarter_annulus",
             GeometrySpec::Nurbs(_) => "nurbs",
         }
@@ -621,9 +648,10 @@ impl GeometrySpec {
         match self {
             GeometrySpec::Rectangle { x0, y0, x1, y1 } => (x1 - x0).hypot(y1 - y0),
             GeometrySpec::Quadrilateral { corners } => span(&mut corners.iter().copied()),
-            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
-                2.0 * radius
-            }
+            GeometrySpec::FullDisk { radius, .. }
+            | GeometrySpec::HalfDisk { radius, .. }
+            | GeometrySpec::Disk5 { radius, .. }
+            | GeometrySpec::HalfDisk4 { radius, .. } => 2.0 * radius,
             GeometrySpec::QuarterAnnulus { outer_radius, .. } => outer_radius * 2f64.sqrt(),
             GeometrySpec::Nurbs(n) => span(&mut n.control_points.iter().copied()),
         }
@@ -634,9 +662,10 @@ impl GeometrySpec {
         match self {
             GeometrySpec::Rectangle { x1, .. } => ("x1", Some(*x1)),
             GeometrySpec::Quadrilateral { .. } => ("corners", None),
-            GeometrySpec::FullDisk { radius, .. } | GeometrySpec::HalfDisk { radius, .. } => {
-                ("radius", Some(*radius))
-            }
+            GeometrySpec::FullDisk { radius, .. }
+            | GeometrySpec::HalfDisk { radius, .. }
+            | GeometrySpec::Disk5 { radius, .. }
+            | GeometrySpec::HalfDisk4 { radius, .. } => ("radius", Some(*radius)),
             GeometrySpec::QuarterAnnulus { outer_radius, .. } => {
                 ("outer_radius", Some(*outer_radius))
             }
@@ -650,6 +679,8 @@ impl GeometrySpec {
             GeometrySpec::Rectangle { .. } | GeometrySpec::Quadrilateral { .. } => 1,
             GeometrySpec::FullDisk { .. }
             | GeometrySpec::HalfDisk { .. }
+            | GeometrySpec::Disk5 { .. }
+            | GeometrySpec::HalfDisk4 { .. }
             | GeometrySpec::QuarterAnnulus { .. } => 2,
             GeometrySpec::Nurbs(n) => n.degree[0].max(n.degree[1]),
         }
@@ -695,7 +726,9 @@ impl GeometrySpec {
                 }
             }
             GeometrySpec::FullDisk { center, radius }
-            | GeometrySpec::HalfDisk { center, radius } => {
+            | GeometrySpec::HalfDisk { center, radius }
+            | GeometrySpec::Disk5 { center, radius }
+            | GeometrySpec::HalfDisk4 { center, radius } => {
                 finite_point(&format!("{f}.center"), *center)?;
                 positive(format!("{f}.radius"), *radius)?;
                 finite_point(
@@ -731,9 +764,26 @@ impl GeometrySpec {
         Ok(())
     }
 
+    /// The patches and named boundaries of a multi-patch kind; `None`
+    /// for the one-patch kinds.
+    pub fn multipatch(&self) -> Option<Result<geometry::MultiPatch>> {
+        match *self {
+            GeometrySpec::Disk5 { center, radius } => Some(geometry::disk_5(center, radius)),
+            GeometrySpec::HalfDisk4 { center, radius } => {
+                Some(geometry::half_disk_4(center, radius))
+            }
+            _ => None,
+        }
+    }
+
     /// The exact patch; `f` is the path of the geometry table.
     fn patch(&self, f: &str) -> Result<NurbsPatch> {
         match *self {
+            GeometrySpec::Disk5 { .. } | GeometrySpec::HalfDisk4 { .. } => Err(Error::invalid(
+                f,
+                self.kind(),
+                "is a body of several patches (no single patch)",
+            )),
             GeometrySpec::Rectangle { x0, y0, x1, y1 } => geometry::rectangle(x0, y0, x1, y1),
             GeometrySpec::Quadrilateral { corners } => geometry::quadrilateral(corners),
             GeometrySpec::FullDisk { center, radius } => geometry::full_disk(center, radius),
@@ -936,6 +986,76 @@ impl Scene {
 
     /// Refuses fewer quadrature points than `need`, unless the scene allows
     /// under-integration.
+    /// The contact pairs of every `[[contact]]`, in order: one for a
+    /// slave side, one per piece of a slave boundary.
+    pub fn pair_ranges(&self) -> Vec<std::ops::Range<usize>> {
+        let mut at = 0;
+        self.contacts
+            .iter()
+            .map(|c| {
+                let n = match (&c.slave_boundary, c.slave.as_str()) {
+                    (Some(name), slave) => self
+                        .bodies
+                        .iter()
+                        .find(|b| b.name == slave)
+                        .and_then(|b| b.geometry.multipatch())
+                        .and_then(|mp| mp.ok())
+                        .and_then(|mp| mp.boundary(name).map(<[_]>::len))
+                        .unwrap_or(1),
+                    (None, _) => 1,
+                };
+                at += n;
+                at - n..at
+            })
+            .collect()
+    }
+
+    /// Refuses a patch side on body `b` when it has several patches.
+    fn one_patch(&self, b: usize, field: &str, side: &str) -> Result<()> {
+        match self.bodies[b].geometry.multipatch() {
+            None => Ok(()),
+            Some(mp) => {
+                let names = mp?.boundary_names().join(", ");
+                Err(Error::invalid(
+                    field,
+                    side,
+                    format!(
+                        "body {:?} has several patches: name one of its boundaries ({names}) \
+                         with `boundary` / `slave_boundary`",
+                        self.bodies[b].name
+                    ),
+                ))
+            }
+        }
+    }
+
+    /// The pieces (patch of the body, side) of boundary `name` of body `b`.
+    fn boundary_of(&self, b: usize, field: &str, name: &str) -> Result<Vec<(usize, Side)>> {
+        let body = &self.bodies[b];
+        let Some(mp) = body.geometry.multipatch() else {
+            return Err(Error::invalid(
+                field,
+                format!("{name:?}"),
+                format!(
+                    "body {:?} is one patch: name a side with `side` / `slave_side`",
+                    body.name
+                ),
+            ));
+        };
+        let mp = mp?;
+        mp.boundary(name).map(<[_]>::to_vec).ok_or_else(|| {
+            Error::invalid(
+                field,
+                format!("{name:?}"),
+                format!(
+                    "body {:?} has the boundaries {}",
+                    body.name,
+                    mp.boundary_names().join(", ")
+                ),
+            )
+        })
+    }
+
     fn enough_points(&self, field: String, n: usize, need: usize, why: String) -> Result<()> {
         if n >= need || self.allow_underintegration {
             return Ok(());
@@ -1024,6 +1144,20 @@ impl Scene {
             b.geometry.validate(&format!("{f}.geometry"))?;
             if let Some(r) = &b.refine {
                 r.validate(&format!("{f}.refine"), b.geometry.degree())?;
+                if let (Some(q), Some(_)) = (r.lagrange, b.geometry.multipatch()) {
+                    return Err(Error::invalid(
+                        format!("{f}.refine.lagrange"),
+                        q,
+                        "a body of several patches is refined by `degree` only",
+                    ));
+                }
+            }
+            if b.formulation != Formulation::Displacement && b.geometry.multipatch().is_some() {
+                return Err(Error::invalid(
+                    format!("{f}.formulation"),
+                    format!("{:?}", b.formulation.name()),
+                    "the mixed formulations are built for one-patch bodies only",
+                ));
             }
             b.material.validate(&format!("{f}.material"))?;
             if b.formulation != Formulation::Displacement && b.material.plane != Plane::Strain {
@@ -1047,12 +1181,29 @@ impl Scene {
         let names = self.body_index();
         for (i, s) in self.supports.iter().enumerate() {
             let f = format!("support[{i}]");
-            self.resolve(&names, format!("{f}.body"), &s.body)?;
+            let b = self.resolve(&names, format!("{f}.body"), &s.body)?;
             finite(format!("{f}.value"), s.value)?;
+            match (s.side, &s.boundary, s.point) {
+                (Some(side), None, None) => self.one_patch(b, &format!("{f}.side"), side.name())?,
+                (None, Some(name), None) => {
+                    self.boundary_of(b, &format!("{f}.boundary"), name)?;
+                }
+                (None, None, Some(x)) => finite_point(&format!("{f}.point"), x)?,
+                _ => {
+                    return Err(Error::invalid(
+                        f,
+                        format!("body {:?}", s.body),
+                        "needs exactly one of `side`, `boundary` or `point`",
+                    ))
+                }
+            }
         }
         for (i, l) in self.loads.iter().enumerate() {
             let f = format!("load[{i}].{}", load_kind(l));
-            self.resolve(&names, format!("{f}.body"), l.body())?;
+            let b = self.resolve(&names, format!("{f}.body"), l.body())?;
+            if let Load::Traction { side, .. } | Load::Pressure { side, .. } = l {
+                self.one_patch(b, &format!("{f}.side"), side.name())?;
+            }
             match l {
                 Load::BodyForce { force, .. } => finite_point(&format!("{f}.force"), *force)?,
                 Load::Traction { traction, .. } => {
@@ -1064,6 +1215,22 @@ impl Scene {
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
             let slave = self.resolve(&names, format!("{f}.slave"), &c.slave)?;
+            match (c.slave_side, &c.slave_boundary) {
+                (Some(side), None) => {
+                    self.one_patch(slave, &format!("{f}.slave_side"), side.name())?
+                }
+                (None, Some(name)) => {
+                    self.boundary_of(slave, &format!("{f}.slave_boundary"), name)?;
+                }
+                _ => {
+                    return Err(Error::invalid(
+                        format!("{f}.slave_side"),
+                        format!("slave {:?}", c.slave),
+                        "needs exactly one of `slave_side` (a one-patch body) or `slave_boundary` \
+                         (a multi-patch body)",
+                    ))
+                }
+            }
             let m = &c.master;
             match (&m.rigid_segment, &m.body, &m.side) {
                 (Some(seg), None, None) => {
@@ -1079,8 +1246,9 @@ impl Scene {
                         ));
                     }
                 }
-                (None, Some(name), Some(_)) => {
+                (None, Some(name), Some(side)) => {
                     let master = self.resolve(&names, format!("{f}.master.body"), name)?;
+                    self.one_patch(master, &format!("{f}.master.side"), side.name())?;
                     if master == slave {
                         return Err(Error::invalid(
                             format!("{f}.master.body"),
@@ -1223,6 +1391,52 @@ fn degenerate_side(patch: &NurbsPatch, side: Side) -> bool {
     })
 }
 
+/// The control point of the patches `patches` nearest `x`, as (patch,
+/// control point), accepted only where it lies on the body: at a patch
+/// corner, where the basis interpolates (elsewhere a control point is off
+/// the body and fixing it is no point support). Support `i` of body `name`.
+fn corner_at(
+    bodies: &[Body],
+    patches: std::ops::Range<usize>,
+    x: [f64; 2],
+    i: usize,
+    name: &str,
+) -> Result<(usize, usize)> {
+    let mut best = (f64::INFINITY, 0, 0);
+    for p in patches {
+        for (a, y) in bodies[p].space.patch.points.iter().enumerate() {
+            let d = (y[0] - x[0]).hypot(y[1] - x[1]);
+            if d < best.0 {
+                best = (d, p, a);
+            }
+        }
+    }
+    let (d, p, a) = best;
+    let patch = &bodies[p].space.patch;
+    let [n0, n1] = patch.n();
+    let (ia, ja) = (a % n0, a / n0);
+    let corner = (ia == 0 || ia == n0 - 1) && (ja == 0 || ja == n1 - 1);
+    let size = crate::interface::extent(patch);
+    if !corner || d > 1e-9 * size {
+        return Err(Error::invalid(
+            format!("support[{i}].point"),
+            format!("{x:?}"),
+            format!(
+                "the nearest control point of body {name:?}, {:?}, is {} away{}; a point \
+                 support needs a patch corner, where the control point lies on the body",
+                patch.points[a],
+                show(d),
+                if corner {
+                    ""
+                } else {
+                    " and not a patch corner"
+                }
+            ),
+        ));
+    }
+    Ok((p, a))
+}
+
 /// An error of the geometry layer, retold with the scene key path of body
 /// `i` (`geometry` the path of its geometry table): library field names
 /// such as `radius` or `patch.control_points[0]` are not scene keys.
@@ -1288,19 +1502,73 @@ impl Scene {
         })
     }
 
-    /// The size of body `i`'s discretisation, from its knot vectors alone.
-    fn body_size(&self, i: usize) -> Result<BodySize> {
+    /// The discretised patches of body `i`: one for the one-patch kinds;
+    /// for a multi-patch kind each refined with its share of `elements`
+    /// ([`geometry::MultiPatch::refined`]).
+    fn body_patches(&self, i: usize) -> Result<Vec<NurbsPatch>> {
         let b = &self.bodies[i];
-        let exact = self.exact_patch(i)?;
+        let Some(mp) = b.geometry.multipatch() else {
+            return Ok(vec![self.body_patch(i)?]);
+        };
+        let f = format!("body[{i}].geometry.{}", b.geometry.kind());
+        let mp = mp.map_err(|e| in_body(e, i, &b.name, &f))?;
+        match &b.refine {
+            None => Ok(mp.patches),
+            Some(RefineSpec {
+                degree: Some(p),
+                elements,
+                ..
+            }) => mp.refined(*p, *elements).map_err(|e| match e {
+                Error::InvalidInput { value, reason, .. } => Error::invalid(
+                    format!("body[{i}].refine"),
+                    value,
+                    format!("{reason} (in the refined patches of body {:?})", b.name),
+                ),
+                other => in_body(other, i, &b.name, ""),
+            }),
+            Some(_) => unreachable!("validated: a multi-patch body is refined by degree"),
+        }
+    }
+
+    /// The sizes of body `i`'s discretisation (one per patch), from its
+    /// knot vectors alone.
+    fn body_sizes(&self, i: usize) -> Result<Vec<BodySize>> {
+        let b = &self.bodies[i];
+        match b.geometry.multipatch() {
+            None => Ok(vec![self.patch_size(i, &self.exact_patch(i)?, None)?]),
+            Some(mp) => {
+                let mp = mp.map_err(|e| in_body(e, i, &b.name, ""))?;
+                mp.patches
+                    .iter()
+                    .zip(&mp.counts)
+                    .map(|(patch, c)| {
+                        let elements = b.refine.as_ref().map(|r| mp.divisions(c, r.elements));
+                        self.patch_size(i, patch, elements)
+                    })
+                    .collect()
+            }
+        }
+    }
+
+    /// The size of one exact patch of body `i` once refined, with the
+    /// element counts `elements` instead of the body's (a multi-patch
+    /// body's per patch).
+    fn patch_size(
+        &self,
+        i: usize,
+        exact: &NurbsPatch,
+        elements: Option<[usize; 2]>,
+    ) -> Result<BodySize> {
+        let b = &self.bodies[i];
         // Per direction: basis functions and elements after refinement.
         let count = |kv: &KnotVector, d: usize| -> (usize, usize, usize) {
             let spans = kv.spans().len();
+            let elements = elements.or(b.refine.as_ref().map(|r| r.elements));
+            let elements = &elements.unwrap_or([1, 1]);
             match &b.refine {
                 None => (kv.n_basis(), spans, kv.degree()),
                 Some(RefineSpec {
-                    degree: Some(p),
-                    elements,
-                    ..
+                    degree: Some(p), ..
                 }) => {
                     let p = (*p).max(kv.degree());
                     let mult = kv.multiplicities();
@@ -1313,9 +1581,7 @@ impl Scene {
                     )
                 }
                 Some(RefineSpec {
-                    lagrange: Some(q),
-                    elements,
-                    ..
+                    lagrange: Some(q), ..
                 }) => (elements[d] * q + 1, elements[d], *q),
                 Some(_) => unreachable!("validated: degree or lagrange"),
             }
@@ -1347,23 +1613,46 @@ impl Scene {
     /// alone, allocating nothing of the size of the discretisation.
     pub fn estimate(&self) -> Result<Estimate> {
         self.validate()?;
-        let sizes = (0..self.bodies.len())
-            .map(|i| self.body_size(i))
+        let per_body = (0..self.bodies.len())
+            .map(|i| self.body_sizes(i))
             .collect::<Result<Vec<_>>>()?;
-        let names = self.body_index();
-        let pairs = self
-            .contacts
+        // the first patch of every body among all patches' sizes
+        let first: Vec<usize> = per_body
             .iter()
-            .map(|c| {
-                let s = &sizes[names[c.slave.as_str()]];
-                let along = c.slave_side.along();
+            .scan(0, |n, v| {
+                let at = *n;
+                *n += v.len();
+                Some(at)
+            })
+            .collect();
+        let sizes: Vec<BodySize> = per_body.into_iter().flatten().collect();
+        let names = self.body_index();
+        // one pair per piece of a slave boundary
+        let mut pieces = Vec::new();
+        for c in &self.contacts {
+            let b = names[c.slave.as_str()];
+            match (c.slave_side, &c.slave_boundary) {
+                (Some(side), _) => pieces.push((c, first[b], side)),
+                (None, Some(name)) => {
+                    for (p, side) in self.boundary_of(b, "slave_boundary", name)? {
+                        pieces.push((c, first[b] + p, side));
+                    }
+                }
+                (None, None) => unreachable!("validated: a slave side or boundary"),
+            }
+        }
+        let pairs = pieces
+            .into_iter()
+            .map(|(c, slave, slave_side)| {
+                let s = &sizes[slave];
+                let along = slave_side.along();
                 let mut degree = s.degree[0].max(s.degree[1]);
                 let mut coupled = s.element_points();
                 let mut master_breaks = 2.0;
                 // Two rows of slave control points reach the normal stress.
                 let mut layer = 4.0 * s.n[along] as f64;
                 if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
-                    let m = &sizes[names[name.as_str()]];
+                    let m = &sizes[first[names[name.as_str()]]];
                     degree = degree.max(m.degree[0].max(m.degree[1]));
                     coupled += m.element_points();
                     master_breaks = m.elements[side.along()] as f64 + 1.0;
@@ -1396,28 +1685,58 @@ impl Scene {
     fn discretise(&self, check: MapCheck) -> Result<Discrete> {
         self.validate()?;
         let names = self.body_index();
-        let idx = |name: &str| names[name];
+        // every body is one or more patches: `first[i]` is the patch index
+        // (into `bodies`) of scene body i's first
+        let mut first = Vec::with_capacity(self.bodies.len());
         let mut bodies = Vec::with_capacity(self.bodies.len());
         for (i, b) in self.bodies.iter().enumerate() {
-            let space = Space::new(self.body_patch(i)?, b.quadrature)
-                .map_err(|e| in_body(e, i, &b.name, ""))?;
-            if check == MapCheck::EveryPoint {
-                for e in &space.elements {
-                    space
-                        .quadrature(e)
-                        .map_err(|e| in_body(e, i, &b.name, ""))?;
+            first.push(bodies.len());
+            for patch in self.body_patches(i)? {
+                let space =
+                    Space::new(patch, b.quadrature).map_err(|e| in_body(e, i, &b.name, ""))?;
+                if check == MapCheck::EveryPoint {
+                    for e in &space.elements {
+                        space
+                            .quadrature(e)
+                            .map_err(|e| in_body(e, i, &b.name, ""))?;
+                    }
                 }
+                bodies.push(Body {
+                    name: b.name.clone(),
+                    space,
+                    material: b.material,
+                    formulation: b.formulation,
+                });
             }
-            bodies.push(Body {
-                name: b.name.clone(),
-                space,
-                material: b.material,
-                formulation: b.formulation,
-            });
         }
+        first.push(bodies.len());
+        let idx = |name: &str| first[names[name]];
+        let patches_of = |name: &str| first[names[name]]..first[names[name] + 1];
         let mut dofs = DofMap::builder(&bodies);
-        for s in &self.supports {
-            dofs.fix_side(idx(&s.body), s.side, s.component.index(), s.value)?;
+        for b in &self.bodies {
+            let patches: Vec<usize> = patches_of(&b.name).collect();
+            if patches.len() > 1 {
+                dofs.join(&b.name, &patches)?;
+            }
+        }
+        for (i, s) in self.supports.iter().enumerate() {
+            let c = s.component.index();
+            match (s.side, &s.boundary, s.point) {
+                (Some(side), _, _) => {
+                    dofs.fix_side(idx(&s.body), side, c, s.value)?;
+                }
+                (None, Some(name), _) => {
+                    let f = format!("support[{i}].boundary");
+                    for (p, side) in self.boundary_of(names[s.body.as_str()], &f, name)? {
+                        dofs.fix_side(idx(&s.body) + p, side, c, s.value)?;
+                    }
+                }
+                (None, None, Some(x)) => {
+                    let (p, cp) = corner_at(&bodies, patches_of(&s.body), x, i, &s.body)?;
+                    dofs.fix(p, cp, c, s.value)?;
+                }
+                (None, None, None) => unreachable!("validated: a side, boundary or point"),
+            }
         }
         let map = dofs.build();
         let mut loads = Vec::with_capacity(self.loads.len());
@@ -1431,18 +1750,42 @@ impl Scene {
                     ));
                 }
             }
-            loads.push(l.map_body(|b| idx(b)));
+            match l {
+                // a body force acts on every patch of its body
+                Load::BodyForce { body, force } => {
+                    for p in patches_of(body) {
+                        loads.push(Load::BodyForce {
+                            body: p,
+                            force: *force,
+                        });
+                    }
+                }
+                _ => loads.push(l.map_body(|b| idx(b))),
+            }
         }
         let mut pairs = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
-            let slave = idx(&c.slave);
-            if degenerate_side(&bodies[slave].space.patch, c.slave_side) {
-                return Err(Error::invalid(
-                    format!("contact[{i}].slave_side"),
-                    c.slave_side.name(),
-                    format!("this side of body {:?} is collapsed to a point", c.slave),
-                ));
-            }
+            let pieces = match (c.slave_side, &c.slave_boundary) {
+                (Some(side), _) => {
+                    let slave = idx(&c.slave);
+                    if degenerate_side(&bodies[slave].space.patch, side) {
+                        return Err(Error::invalid(
+                            format!("contact[{i}].slave_side"),
+                            side.name(),
+                            format!("this side of body {:?} is collapsed to a point", c.slave),
+                        ));
+                    }
+                    vec![(slave, side)]
+                }
+                (None, Some(name)) => {
+                    let f = format!("contact[{i}].slave_boundary");
+                    self.boundary_of(names[c.slave.as_str()], &f, name)?
+                        .into_iter()
+                        .map(|(p, side)| (idx(&c.slave) + p, side))
+                        .collect()
+                }
+                (None, None) => unreachable!("validated: a slave side or boundary"),
+            };
             let master = match (&c.master.rigid_segment, &c.master.body, c.master.side) {
                 (Some(seg), _, _) => Master::Rigid(geometry::segment(seg.from, seg.to)?),
                 (None, Some(name), Some(side)) => {
@@ -1458,12 +1801,14 @@ impl Scene {
                 }
                 _ => unreachable!("validated: a rigid segment or a body and side"),
             };
-            pairs.push(ContactPair {
-                slave,
-                slave_side: c.slave_side,
-                master,
-                nitsche: c.nitsche,
-            });
+            for (slave, slave_side) in pieces {
+                pairs.push(ContactPair {
+                    slave,
+                    slave_side,
+                    master: master.clone(),
+                    nitsche: c.nitsche,
+                });
+            }
         }
         Ok(Discrete {
             bodies,
@@ -1652,32 +1997,43 @@ impl Scene {
             None
         };
         let contact = match (applied_force, &profile) {
-            (Some(_), Some(profile)) => post::contact_resultants(problem, full)
-                .iter()
-                .enumerate()
-                .map(|(k, &f)| {
-                    let m = profile.measures(k);
-                    PairSummary {
-                        p0: no_negative_zero(m.p0),
-                        half_width: no_negative_zero(m.half_width),
-                        zones: m.zones,
-                        contact_force: f.map(no_negative_zero),
-                        penalty_below_bound_points: stability[k].active_below,
-                        min_penalty_ratio: stability[k].min_active_ratio,
-                    }
-                })
-                .collect(),
+            (Some(_), Some(profile)) => {
+                let forces = post::contact_resultants(problem, full);
+                // one entry per [[contact]], over the pairs of its pieces
+                self.pair_ranges()
+                    .into_iter()
+                    .map(|r| {
+                        let m = profile.measures_joined(r.clone());
+                        let f = forces[r.clone()]
+                            .iter()
+                            .fold([0.0, 0.0], |a, f| [a[0] + f[0], a[1] + f[1]]);
+                        let st = &stability[r];
+                        PairSummary {
+                            p0: no_negative_zero(m.p0),
+                            half_width: no_negative_zero(m.half_width),
+                            zones: m.zones,
+                            contact_force: f.map(no_negative_zero),
+                            penalty_below_bound_points: st.iter().map(|s| s.active_below).sum(),
+                            min_penalty_ratio: st
+                                .iter()
+                                .filter_map(|s| s.min_active_ratio)
+                                .reduce(f64::min),
+                        }
+                    })
+                    .collect()
+            }
             _ => Vec::new(),
         };
         clock.lap(Phase::PostProcessing);
         if let (true, Some(profile)) = (o.figures, &profile) {
             let pairs = self.contacts.len();
+            let ranges = self.pair_ranges();
             let series: Vec<plot::Series> = (0..pairs)
                 .map(|k| {
                     // where the map is singular the bracket is not a pressure
-                    let points = profile
-                        .pair(k)
-                        .iter()
+                    let points = ranges[k]
+                        .clone()
+                        .flat_map(|r| profile.pair(r))
                         .filter(|p| p.regular)
                         .map(|p| (p.x[0], p.pressure()))
                         .collect();

@@ -89,8 +89,13 @@ pub(crate) struct RigidBasis {
 }
 
 impl RigidBasis {
-    pub(crate) fn of(body: &Body) -> Self {
-        let pts = &body.space.patch.points;
+    /// The basis of one body of several patches (the control points of
+    /// all of them).
+    pub(crate) fn of_patches(bodies: &[Body], patches: &[usize]) -> Self {
+        let pts: Vec<[f64; 2]> = patches
+            .iter()
+            .flat_map(|&b| bodies[b].space.patch.points.iter().copied())
+            .collect();
         let n = pts.len().max(1) as f64;
         let c = pts
             .iter()
@@ -146,20 +151,22 @@ fn short(v: f64) -> String {
     }
 }
 
-/// Free rigid modes of one body: coefficient vectors (over [`RigidBasis`])
-/// that move no prescribed DOF.
+/// Free rigid modes of one body (its patches `patches`): coefficient
+/// vectors (over [`RigidBasis`]) that move no prescribed DOF.
 pub(crate) fn free_modes(
-    body: &Body,
-    b: usize,
+    bodies: &[Body],
+    patches: &[usize],
     map: &DofMap,
     basis: &RigidBasis,
 ) -> Vec<Vector3<f64>> {
     let mut mtm = Matrix3::<f64>::zeros();
-    for (a, p) in body.space.patch.points.iter().enumerate() {
-        for comp in 0..2 {
-            if map.free(map.global(b, a, comp)).is_none() {
-                let row = Vector3::from_fn(|k, _| basis.value(k, *p, comp));
-                mtm += row * row.transpose();
+    for &b in patches {
+        for (a, p) in bodies[b].space.patch.points.iter().enumerate() {
+            for comp in 0..2 {
+                if map.free(map.global(b, a, comp)).is_none() {
+                    let row = Vector3::from_fn(|k, _| basis.value(k, *p, comp));
+                    mtm += row * row.transpose();
+                }
             }
         }
     }
@@ -174,25 +181,38 @@ pub(crate) fn free_modes(
 /// Rejects rigid motions that neither the supports nor the contact points
 /// hold, naming the body (or bodies) and the motion.
 pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint]) -> Result<()> {
-    // Free modes of every body, as (body, coefficients).
-    let bases: Vec<RigidBasis> = bodies.iter().map(RigidBasis::of).collect();
+    // Free modes of every elastic body (a group of patches moving as one),
+    // as (body, coefficients); `group_at[patch]` is the body.
+    let groups = map.groups();
+    let mut group_at = vec![0; bodies.len()];
+    for (gi, g) in groups.iter().enumerate() {
+        for &b in g {
+            group_at[b] = gi;
+        }
+    }
+    let bases: Vec<RigidBasis> = groups
+        .iter()
+        .map(|g| RigidBasis::of_patches(bodies, g))
+        .collect();
+    let name = |gi: usize| &bodies[groups[gi][0]].name;
     let mut modes: Vec<(usize, Vector3<f64>)> = Vec::new();
-    for (b, body) in bodies.iter().enumerate() {
-        for c in free_modes(body, b, map, &bases[b]) {
-            modes.push((b, c));
+    for (gi, g) in groups.iter().enumerate() {
+        for c in free_modes(bodies, g, map, &bases[gi]) {
+            modes.push((gi, c));
         }
     }
     if modes.is_empty() {
         return Ok(());
     }
-    // Body and control point of every global DOF a contact point touches.
-    let owner = |g: usize| -> (usize, usize, usize) {
+    // Body, patch and control point of every global DOF a contact point
+    // touches.
+    let owner = |g: usize| -> (usize, usize, usize, usize) {
         let b = (0..bodies.len())
             .rev()
             .find(|&b| map.global(b, 0, 0) <= g)
             .unwrap_or(0);
         let local = g - map.global(b, 0, 0);
-        (b, local / 2, local % 2)
+        (group_at[b], b, local / 2, local % 2)
     };
     // G[q][m] = jn_qᵀ r_m, weighted: M = Σ w_q g_q g_qᵀ / Σ w_q.
     let m = modes.len();
@@ -205,11 +225,11 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
             if cp.jn[k] == 0.0 {
                 continue;
             }
-            let (b, a, comp) = owner(dof);
+            let (gi, b, a, comp) = owner(dof);
             let x = bodies[b].space.patch.points[a];
             for (j, (mb, c)) in modes.iter().enumerate() {
-                if *mb == b {
-                    let r: f64 = (0..3).map(|i| c[i] * bases[b].value(i, x, comp)).sum();
+                if *mb == gi {
+                    let r: f64 = (0..3).map(|i| c[i] * bases[gi].value(i, x, comp)).sum();
                     g[j] += cp.jn[k] * r;
                 }
             }
@@ -237,7 +257,7 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
             .any(|cp| cp.dofs.iter().any(|&d| owner(d).0 == b))
     };
     // One body at a time (the others held), then all together.
-    for b in 0..bodies.len() {
+    for b in 0..groups.len() {
         let idx: Vec<usize> = (0..m).filter(|&j| modes[j].0 == b).collect();
         if idx.is_empty() {
             continue;
@@ -255,7 +275,7 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
             };
             return Err(Error::invalid(
                 format!("body[{b}]"),
-                format!("{:?}", bodies[b].name),
+                format!("{:?}", name(b)),
                 format!(
                     "can {} freely: {why}, so the problem is singular; add a [[support]] \
                      that holds this motion",
@@ -267,7 +287,7 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
     let all: Vec<usize> = (0..m).collect();
     if let Some(v) = unheld(&all) {
         let mut parts = Vec::new();
-        for b in 0..bodies.len() {
+        for b in 0..groups.len() {
             let mut c = Vector3::zeros();
             for (j, (mb, cj)) in modes.iter().enumerate() {
                 if *mb == b {
@@ -277,7 +297,7 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
             if c.norm() > 1e-6 {
                 parts.push(format!(
                     "{:?} can {}",
-                    bodies[b].name,
+                    name(b),
                     bases[b].describe(c.as_slice())
                 ));
             }
@@ -288,7 +308,7 @@ pub fn check_rigid_modes(bodies: &[Body], map: &DofMap, points: &[ContactPoint])
         .0;
         return Err(Error::invalid(
             format!("body[{first}]"),
-            format!("{:?}", bodies[first].name),
+            format!("{:?}", name(first)),
             format!(
                 "together, {}: no support holds this joint motion and the contact normals never \
                  see it, so the problem is singular; add a [[support]] that holds it",

@@ -176,7 +176,7 @@ fn no_free_dof_is_refused_as_input() {
         (Side::EtaMax, Component::X),
         (Side::XiMax, Component::X),
     ] {
-        more.side = side;
+        more.side = Some(side);
         more.component = comp;
         s.supports.push(more.clone());
     }

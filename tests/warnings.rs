@@ -65,10 +65,10 @@ fn swapped(mut s: Scene) -> Scene {
     let c = &mut s.contacts[0];
     let (slave, side) = (c.slave.clone(), c.slave_side);
     c.slave = c.master.body.take().unwrap();
-    c.slave_side = c.master.side.take().unwrap();
+    c.slave_side = Some(c.master.side.take().unwrap());
     c.master = MasterSpec {
         body: Some(slave),
-        side: Some(side),
+        side,
         ..MasterSpec::default()
     };
     s

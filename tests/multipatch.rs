@@ -1,0 +1,372 @@
+//! Bodies of several patches with matching interfaces: the builders'
+//! geometry is exact and regular, the joined DOF map reproduces affine
+//! fields across the interfaces, non-matching interfaces are refused, and
+//! the multi-patch Hertz scenes agree with the closed form.
+
+use iga_contact::assembly;
+use iga_contact::dofs::{Body, DofMap};
+use iga_contact::geometry::{disk_5, half_disk_4, MultiPatch};
+use iga_contact::linsolve::{mul, Factoriser, Method, Pattern};
+use iga_contact::material::{Formulation, Material, Plane};
+use iga_contact::nurbs::Side;
+use iga_contact::problem::Problem;
+use iga_contact::quadrature;
+use iga_contact::space::Space;
+use std::f64::consts::PI;
+
+const R: f64 = 0.2;
+const C: [f64; 2] = [0.0, 0.2];
+
+/// The patches of `mp`, each refined to degree `p` with `elements`.
+fn bodies(mp: &MultiPatch, p: usize, elements: [usize; 2]) -> Vec<Body> {
+    bodies_q(mp, p, elements, None)
+}
+
+/// As [`bodies`], with `quad` Gauss points per direction.
+fn bodies_q(mp: &MultiPatch, p: usize, elements: [usize; 2], quad: Option<usize>) -> Vec<Body> {
+    let material = Material::new(2.0e7, 0.1, Plane::Strain).unwrap();
+    mp.refined(p, elements)
+        .unwrap()
+        .into_iter()
+        .map(|patch| Body {
+            name: "disk".into(),
+            space: Space::new(patch, quad).unwrap(),
+            material,
+            formulation: Formulation::Displacement,
+        })
+        .collect()
+}
+
+/// Area by Gauss quadrature of every element (which fails where det J ≤ 0);
+/// det J is rational, so only a rule well above p + 1 makes it exact to
+/// round-off.
+fn area(bodies: &[Body]) -> f64 {
+    bodies
+        .iter()
+        .flat_map(|b| {
+            b.space
+                .elements
+                .iter()
+                .map(|e| b.space.quadrature(e).unwrap())
+        })
+        .flatten()
+        .map(|q| {
+            assert!(q.shape.det_j > 0.0);
+            q.weight
+        })
+        .sum()
+}
+
+/// Length of the pieces of a boundary, by Gauss quadrature of |∂x/∂t|.
+fn length(bodies: &[Body], pieces: &[(usize, Side)]) -> f64 {
+    pieces
+        .iter()
+        .map(|&(b, side)| {
+            let s = &bodies[b].space;
+            s.boundary(side)
+                .iter()
+                .map(|be| {
+                    quadrature::on_interval(24, be.range[0], be.range[1])
+                        .iter()
+                        .map(|&(t, w)| w * s.side_shape(be, t).unwrap().2)
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn five_patch_disk_is_exact_and_regular() {
+    let mp = disk_5(C, R).unwrap();
+    assert_eq!(mp.patches.len(), 5);
+    for elements in [[1, 1], [4, 2], [8, 8]] {
+        let b = bodies_q(&mp, 2, elements, Some(14));
+        assert!(rel(area(&b), PI * R * R) < 1e-12, "{}", area(&b));
+        let arc = length(&b, mp.boundary("arc").unwrap());
+        assert!(rel(arc, 2.0 * PI * R) < 1e-12, "{arc}");
+        let bottom = length(&b, mp.boundary("arc_bottom").unwrap());
+        assert!(rel(bottom, PI * R / 2.0) < 1e-12, "{bottom}");
+    }
+}
+
+#[test]
+fn four_patch_half_disk_is_exact_and_regular() {
+    let mp = half_disk_4(C, R).unwrap();
+    for elements in [[1, 1], [3, 2], [8, 8]] {
+        let b = bodies_q(&mp, 2, elements, Some(14));
+        assert!(rel(area(&b), PI * R * R / 2.0) < 1e-12, "{}", area(&b));
+        let arc = length(&b, mp.boundary("arc").unwrap());
+        assert!(rel(arc, PI * R) < 1e-12, "{arc}");
+        let straight = length(&b, mp.boundary("straight").unwrap());
+        assert!(rel(straight, 2.0 * R) < 1e-12, "{straight}");
+        let lower = length(&b, mp.boundary("arc_lower").unwrap());
+        assert!(rel(lower, 0.75 * PI * R) < 1e-12, "{lower}");
+        // every control point of the straight side lies on x = cx
+        for &(p, side) in mp.boundary("straight").unwrap() {
+            for a in b[p].space.patch.side_indices(side) {
+                assert!((b[p].space.patch.points[a][0] - C[0]).abs() < 1e-15);
+            }
+        }
+    }
+}
+
+/// The joined map of all patches of `b`, every control point of the
+/// boundary `outer` set to `field`.
+fn joined(b: &[Body], outer: &[(usize, Side)], field: impl Fn([f64; 2]) -> [f64; 2]) -> DofMap {
+    let all: Vec<usize> = (0..b.len()).collect();
+    let mut builder = DofMap::builder(b);
+    builder.join("disk", &all).unwrap();
+    for &(p, side) in outer {
+        builder.fix_side_field(p, side, &field).unwrap();
+    }
+    builder.build()
+}
+
+#[test]
+fn affine_field_is_reproduced_across_the_interfaces() {
+    let a = [[1.0e-3, -2.5e-3], [0.7e-3, 1.8e-3]];
+    let field = move |x: [f64; 2]| {
+        [
+            a[0][0] * x[0] + a[0][1] * x[1] + 0.4e-3,
+            a[1][0] * x[0] + a[1][1] * x[1] - 0.9e-3,
+        ]
+    };
+    for (mp, outer) in [
+        (disk_5(C, R).unwrap(), "arc"),
+        (half_disk_4(C, R).unwrap(), "arc"),
+    ] {
+        let mut outer = mp.boundary(outer).unwrap().to_vec();
+        if let Some(s) = mp.boundary("straight") {
+            outer.extend_from_slice(s);
+        }
+        // the rational map makes p + 1 points inexact for ∫ ∇v det J, which
+        // would blur an exact reproduction by ~1e-9; 12 points remove that
+        let b = bodies_q(&mp, 3, [5, 3], Some(12));
+        let map = joined(&b, &outer, field);
+        // shared control points are one unknown: fewer free DOFs than the
+        // patches' interior ones added up
+        let split = map.unlinked().0;
+        assert!(map.n_free() < split.n_free());
+        let problem = Problem::new(b, map, &[], Vec::new()).unwrap();
+        let f = Factoriser::default()
+            .factor(&problem.k, Method::Cholesky)
+            .unwrap();
+        let u = f.solve(&problem.rhs).unwrap();
+        let full = problem.map.expand(&u);
+        let mut worst = 0.0_f64;
+        for (bi, body) in problem.bodies.iter().enumerate() {
+            for (cp, x) in body.space.patch.points.iter().enumerate() {
+                let d = problem.map.cp_displacement(&full, bi, cp);
+                let e = field(*x);
+                worst = worst.max((d[0] - e[0]).hypot(d[1] - e[1]));
+            }
+            // and at the Gauss points, through the shape functions
+            for el in &body.space.elements {
+                for q in body.space.quadrature(el).unwrap() {
+                    let d = assembly::displacement_at(&problem.map, &full, bi, &el.cps, &q.shape);
+                    let e = field(q.shape.x);
+                    worst = worst.max((d[0] - e[0]).hypot(d[1] - e[1]));
+                }
+            }
+        }
+        // relative to the field's size, 3e-3 · R
+        assert!(worst < 1e-12 * 6e-4, "affine field off by {worst:e}");
+    }
+}
+
+#[test]
+fn folded_stiffness_equals_the_joined_triplet_assembly() {
+    // Two independent assemblies of the joined stiffness: per patch on the
+    // split map then folded (the solver's), and element triplets scattered
+    // straight into the shared unknowns.
+    let mp = disk_5(C, R).unwrap();
+    let b = bodies(&mp, 2, [4, 3]);
+    let outer = mp.boundary("arc_bottom").unwrap().to_vec();
+    let map = joined(&b, &outer, |_| [0.0, 0.0]);
+    let (trip, _) = assembly::stiffness(&b, &map).unwrap();
+    let k2 = Pattern::new(map.n_free(), &[&trip])
+        .unwrap()
+        .matrix(&[&trip.vals])
+        .unwrap();
+    let problem = Problem::new(b, map, &[], Vec::new()).unwrap();
+    let n = problem.n();
+    let x: Vec<f64> = (0..n).map(|i| ((i * 37 % 101) as f64).sin()).collect();
+    let (y1, y2) = (mul(&problem.k, &x), mul(&k2, &x));
+    let scale = y2.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let diff = y1
+        .iter()
+        .zip(&y2)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff < 1e-12 * scale, "{diff:e} of {scale:e}");
+}
+
+#[test]
+fn non_matching_interface_is_refused_naming_body_and_patches() {
+    let mp = disk_5(C, R).unwrap();
+    let mut b = bodies(&mp, 2, [4, 3]);
+    // the core refined differently: its sides no longer match the arcs'
+    b[0] = bodies(&mp, 2, [5, 3]).swap_remove(0);
+    assert_eq!(b[0].space.n_elements(), [5, 5]);
+    let all: Vec<usize> = (0..b.len()).collect();
+    let e = DofMap::builder(&b)
+        .join("disk", &all)
+        .err()
+        .expect("refused");
+    let msg = e.to_string();
+    assert!(msg.contains("disk") && msg.contains("patches 0"), "{msg}");
+    assert!(!msg.contains('\n'), "{msg}");
+}
+
+// ------------------------------------------------------------- scenes
+
+use iga_contact::post::hertz::{Cylinder, Hertz};
+use iga_contact::post::PressureProfile;
+use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::solver::{solve, Warning};
+
+/// Hertz's p₀ and a for the disk of the Hertz scenes under `factor` times
+/// their load (the full disk's load: twice the half model's).
+fn hertz(factor: f64) -> Hertz {
+    let material = Material::new(2.0e7, 0.1, Plane::Strain).unwrap();
+    let load = factor * 1.3e6 * PI * R * R;
+    Hertz::new(
+        Cylinder::Elastic {
+            radius: R,
+            material,
+        },
+        Cylinder::RigidPlane,
+        load,
+    )
+}
+
+/// The shipped scene `file`, refined to `n × n`, its body force times
+/// `factor`: (p₀, a, zones, warnings) over its first contact's pieces.
+fn run(file: &str, n: usize, factor: f64) -> (f64, f64, usize, Vec<Warning>) {
+    let mut scene = Scene::shipped(file)
+        .unwrap()
+        .refined("disk", RefineSpec::iga(2, [n, n]))
+        .unwrap();
+    for l in &mut scene.loads {
+        if let assembly::Load::BodyForce { force, .. } = l {
+            force[1] *= factor;
+        }
+    }
+    let problem = scene.build().unwrap();
+    let sol =
+        solve(&problem, &scene.solver).unwrap_or_else(|e| panic!("{file} {n} ×{factor}: {e}"));
+    let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
+    let m = profile.measures_joined(scene.pair_ranges()[0].clone());
+    (m.p0, m.half_width, m.zones, sol.warnings)
+}
+
+#[test]
+fn hertz_multipatch_matches_hertz_like_the_one_patch_scene() {
+    // Both scenes put n elements on the 45° of arc next to the lowest
+    // point, where the contact zone lies: comparable meshes.
+    let h = hertz(1.0);
+    let err = |p0: f64, a: f64| rel(p0, h.p0).max(rel(a, h.half_width));
+    let mut errors = Vec::new();
+    for n in [8, 16] {
+        let (p0, a, zones, _) = run("hertz_multipatch.toml", n, 1.0);
+        let (q0, b, _, _) = run("hertz.toml", n, 1.0);
+        let (multi, single) = (err(p0, a), err(q0, b));
+        assert_eq!(zones, 1);
+        assert!(
+            multi <= 1.25 * single,
+            "{n} × {n}: multi-patch error {multi:e} against one patch {single:e}"
+        );
+        errors.push(multi);
+    }
+    // and it falls under refinement, at least as h² (the measures'
+    // sampling adds its own share)
+    assert!(errors[1] < 0.25 * errors[0], "{errors:?}");
+}
+
+#[test]
+fn heavy_load_crosses_the_join_as_one_zone_without_a_side_end_warning() {
+    let at_side_end = |w: &[Warning]| w.iter().any(|w| matches!(w, Warning::ZoneAtSideEnd { .. }));
+    // 45° up the arc from the lowest point, where the one-patch side ends
+    let corner = R * std::f64::consts::FRAC_1_SQRT_2;
+    for factor in [8.0, 16.0] {
+        let (p0, a, zones, warnings) = run("hertz_multipatch.toml", 8, factor);
+        assert_eq!(zones, 1, "×{factor}");
+        assert!(!at_side_end(&warnings), "×{factor}: {warnings:?}");
+        assert!(p0 > 0.0 && a > 0.0);
+        if factor == 16.0 {
+            // the zone runs past the join at 315° and past where the
+            // one-patch side would end
+            assert!(a > corner, "{a} against {corner}");
+        }
+    }
+}
+
+#[test]
+fn multi_patch_keys_are_checked_with_one_error_line() {
+    let base =
+        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let cases = [
+        // a patch side on a body of several patches
+        (
+            "boundary = \"straight\"",
+            "side = \"xi_min\"",
+            "support[0].side",
+        ),
+        // a boundary the builder does not define
+        (
+            "slave_boundary = \"arc_lower\"",
+            "slave_boundary = \"rim\"",
+            "contact[0].slave_boundary",
+        ),
+        // a point support off the patch corners: the centre
+        (
+            "boundary = \"straight\"",
+            "point = [0.05, 0.2]",
+            "support[0].point",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let text = base.replacen(from, to, 1);
+        let e = Scene::from_toml_str(&text)
+            .and_then(|s| s.build().map(|_| ()))
+            .expect_err(to);
+        let msg = e.to_string();
+        assert!(msg.contains(field), "{to}: {msg}");
+        assert!(!msg.contains('\n'), "{msg}");
+    }
+}
+
+#[test]
+fn point_supports_at_patch_corners_hold_the_body() {
+    // the straight side held by two point supports in x at patch corners
+    // (the core's corners on the diameter) instead of the whole side: the
+    // body is still held (the well-posedness check passes) and in x only
+    // there, so the contact force balances the load
+    let base =
+        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let text = base.replacen(
+        "boundary = \"straight\"\ncomponent = \"x\"\nvalue = 0.0",
+        "point = [0.0, 0.12]\ncomponent = \"x\"\n\n[[support]]\nbody = \"disk\"\npoint = [0.0, 0.28]\ncomponent = \"x\"",
+        1,
+    );
+    assert_ne!(text, base);
+    let scene = Scene::from_toml_str(&text).unwrap();
+    let problem = scene.build().unwrap();
+    let sol = solve(&problem, &scene.solver).unwrap();
+    let f = iga_contact::post::contact_resultant(&problem, &sol.full);
+    let load = 1.3e6 * PI * R * R / 2.0;
+    assert!(rel(f[1], load) < 1e-8, "{f:?}");
+    // without supports the x slide of the whole body, all its patches
+    // together, is free: refused, naming the body
+    let mut none = Scene::from_toml_str(&base).unwrap();
+    none.supports.clear();
+    let e = none.build().err().expect("refused");
+    assert!(
+        e.to_string().contains("body[0]") && e.to_string().contains("slide"),
+        "{e}"
+    );
+}
