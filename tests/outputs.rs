@@ -246,9 +246,15 @@ fn run(dir: &Path, scene: &str, out: &Path) -> Output {
 fn single_error_line(o: &Output) -> String {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "stderr: {err}");
-    assert!(lines[0].starts_with("error: "), "stderr: {err}");
-    lines[0].to_string()
+    // A run that has solved may have printed its warnings (one line per
+    // cause) before it failed; the failure itself is one `error:` line.
+    let (last, before) = lines.split_last().expect("an error line on stderr");
+    assert!(last.starts_with("error: "), "stderr: {err}");
+    assert!(
+        before.iter().all(|l| l.starts_with("warning: ")),
+        "stderr: {err}"
+    );
+    last.to_string()
 }
 
 /// An earlier set from scene `old.toml`, and the complete new set that
