@@ -281,7 +281,10 @@ pub fn run(work: &Path) -> Result<Faults> {
         }
     }
     out.kills = trials.len();
-    let next = format!("staging removed {} of {}", out.kills_cleaned, out.kills_left);
+    let next = format!(
+        "staging removed {} of {}",
+        out.kills_cleaned, out.kills_left
+    );
     out.row(
         &format!("SIGKILL at {} moments, parse to past the end", out.kills),
         &trials,
