@@ -255,7 +255,11 @@ fn main() -> Result<()> {
                     (x * 1e3, 2.0 * (1.0 + nu) / 3.0 * exact.pressure(x) * 1e-6)
                 })
                 .collect();
-            curves.push(Series::line("Hertz", hertz_mean).dashed().colored(2));
+            curves.push(
+                Series::line("Hertz", hertz_mean)
+                    .dashed()
+                    .colored(FORMULATIONS.len()),
+            );
         }
     }
     line_chart(
