@@ -10,7 +10,7 @@
 //! holds the bodies, every kernel is A₀ plus a matrix on L × L.
 //! [`Condensation`] factorises A₀ once by sparse Cholesky, with L ordered
 //! last and the interior I by AMD on the graph of A₀ with L made a clique
-//! ([`layer_last_order`]). Then the trailing ℓ × ℓ block of the factor
+//! (`layer_last_order`). Then the trailing ℓ × ℓ block of the factor
 //! gives the Schur complement
 //!
 //!   S₀ = A_LL − A_LI A_II⁻¹ A_IL = L_LL L_LLᵀ
