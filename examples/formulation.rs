@@ -21,7 +21,7 @@ use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry;
 use iga_contact::nurbs::{KnotVector, NurbsCurve, Side};
 use iga_contact::report::chapter::Chapter;
-use iga_contact::report::plot::figures::{basis_figure, contact_sketch, control_net_figure};
+use iga_contact::report::figures::{basis_figure, contact_sketch, control_net_figure};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::space::Space;
 use std::process::ExitCode;

@@ -2,7 +2,8 @@
 //! and bad input is refused before anything is written.
 
 use iga_contact::report::plot::{
-    field_figure, geometry_figure, line_chart, Axes, FieldCell, LineKind, Polyline, Series,
+    annotated_figure, chart, field_figure, geometry_figure, line_chart, Axes, Bounds, Chart,
+    ChartLine, Color, FieldCell, Label, LabelSide, LegendEntry, LineKind, Polyline, Series, Stroke,
     BLACK_INDEX, WHITE_INDEX,
 };
 use std::f64::consts::PI;
@@ -419,4 +420,80 @@ fn extreme_layouts_render() {
     let path = out("wrap.svg");
     line_chart(&path, &axes, &series).unwrap();
     assert_svg_with_text(&path, &["quadratic NURBS, 256 elements", "γ"]);
+}
+
+/// A chart a chapter composes itself: a hat function over a grey guide.
+fn hat_chart(lines: Vec<ChartLine>, x_range: Bounds) -> Chart {
+    Chart {
+        title: "A hat function".into(),
+        x_label: "ξ".into(),
+        y_label: "value".into(),
+        x_range,
+        y_range: Bounds {
+            lo: -0.05,
+            hi: 1.05,
+        },
+        legend: vec![LegendEntry {
+            label: "N₀".into(),
+            color: Color::Palette(0),
+            width: 2,
+            stroke: Stroke::Solid,
+            marker: None,
+        }],
+        lines,
+    }
+}
+
+fn hat_lines() -> Vec<ChartLine> {
+    vec![
+        ChartLine {
+            points: vec![(0.5, -0.05), (0.5, 1.05)],
+            color: Color::Rgb(0x99, 0x99, 0x99),
+            width: 1,
+            dash: Some((4, 4)),
+        },
+        ChartLine {
+            points: vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)],
+            color: Color::Palette(0),
+            width: 2,
+            dash: None,
+        },
+    ]
+}
+
+#[test]
+fn composed_chart_and_annotated_figure_write_svg_and_refuse_bad_input() {
+    let unit = Bounds { lo: 0.0, hi: 1.0 };
+    let path = out("chart.svg");
+    chart(&path, &hat_chart(hat_lines(), unit)).unwrap();
+    assert_svg_with_text(&path, &["A hat function", "N₀", "ξ", "value"]);
+    assert_deterministic("chart-det", |p| {
+        chart(p, &hat_chart(hat_lines(), unit)).unwrap()
+    });
+
+    let bad = out("chart-bad.svg");
+    let _ = std::fs::remove_file(&bad);
+    let mut nan = hat_lines();
+    nan[1].points[1].1 = f64::NAN;
+    let err = chart(&bad, &hat_chart(nan, unit)).unwrap_err();
+    assert!(err.to_string().contains("lines[1].points[1].y"), "{err}");
+    let empty = Bounds { lo: 1.0, hi: 1.0 };
+    assert!(chart(&bad, &hat_chart(hat_lines(), empty)).is_err());
+    assert!(!bad.exists());
+
+    let path = out("annotated.svg");
+    let lines = [Polyline::new(
+        vec![[0.0, 0.0], [1.0, 0.5]],
+        LineKind::Solid,
+        0,
+    )];
+    let labels = [Label::new([0.0, 0.0], "x¹", LabelSide::Left).colored(3)];
+    annotated_figure(&path, "A labelled segment", &lines, &labels).unwrap();
+    assert_svg_with_text(&path, &["A labelled segment", "x¹"]);
+    let far = [Label::new([f64::INFINITY, 0.0], "far", LabelSide::Right)];
+    let bad = out("annotated-bad.svg");
+    let _ = std::fs::remove_file(&bad);
+    let err = annotated_figure(&bad, "bad", &lines, &far).unwrap_err();
+    assert!(err.to_string().contains("labels[0].at[0]"), "{err}");
+    assert!(!bad.exists());
 }

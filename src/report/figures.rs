@@ -3,112 +3,18 @@
 //! geometry (slave point, closest-point projection, normals and gap) drawn
 //! from the contact code itself.
 //!
-//! This module is a child of [`super`] (the `plot` module) so that it shares
-//! that module's layout, fonts, palette and atomic rendering; it only adds
-//! text labels placed at data points and the figures built on them.
+//! They are described with the public API of [`crate::report::plot`] only
+//! (annotated geometry figures and charts of their own), so that this module
+//! does not depend on how plots are laid out or drawn.
 
-use super::*;
 use crate::contact::ContactPoint;
+use crate::error::{Error, Result};
 use crate::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
-
-/// Where a [`Label`] sits relative to its point.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum LabelSide {
-    #[default]
-    Right,
-    Left,
-    Above,
-    Below,
-}
-
-/// A text placed beside a point of a figure, in data coordinates.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Label {
-    pub at: [f64; 2],
-    pub text: String,
-    pub side: LabelSide,
-    /// Index into [`PALETTE`].
-    pub color: usize,
-}
-
-impl Label {
-    pub fn new(at: [f64; 2], text: impl Into<String>, side: LabelSide) -> Self {
-        Label {
-            at,
-            text: text.into(),
-            side,
-            color: BLACK_INDEX,
-        }
-    }
-
-    pub fn colored(mut self, color: usize) -> Self {
-        self.color = color;
-        self
-    }
-}
-
-const LABEL_SIZE: f64 = 16.0;
-/// Pixels between a labelled point and its text.
-const LABEL_OFFSET: i32 = 7;
-
-fn check_labels(labels: &[Label]) -> Result<()> {
-    for (i, l) in labels.iter().enumerate() {
-        for (k, &v) in l.at.iter().enumerate() {
-            check_finite(|| format!("labels[{i}].at[{k}]"), v)?;
-        }
-    }
-    Ok(())
-}
-
-struct AnnotatedFigure {
-    geometry: GeometryFigure,
-    labels: Vec<Label>,
-}
-
-impl Figure for AnnotatedFigure {
-    fn frame(&self) -> &Frame {
-        &self.geometry.frame
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
-        let frame = &self.geometry.frame;
-        draw_header(root, frame)?;
-        let region = chart_region(root, frame);
-        let mut chart = draw_axes(&region, frame, true)?;
-        draw_polylines(&mut chart, &self.geometry.lines)?;
-        for l in &self.labels {
-            let (h, v, dx, dy) = match l.side {
-                LabelSide::Right => (HPos::Left, VPos::Center, LABEL_OFFSET, 0),
-                LabelSide::Left => (HPos::Right, VPos::Center, -LABEL_OFFSET, 0),
-                LabelSide::Above => (HPos::Center, VPos::Bottom, 0, -LABEL_OFFSET),
-                LabelSide::Below => (HPos::Center, VPos::Top, 0, LABEL_OFFSET),
-            };
-            let style = font(LABEL_SIZE)
-                .color(&palette(l.color))
-                .pos(Pos::new(h, v));
-            chart.draw_series(std::iter::once(
-                EmptyElement::at((l.at[0], l.at[1])) + Text::new(l.text.clone(), (dx, dy), style),
-            ))?;
-        }
-        draw_box(root, frame)
-    }
-}
-
-/// A [`geometry_figure`] with text labels at data points (names of points,
-/// weights of control points). Labels do not widen the plotted range.
-pub fn annotated_figure(
-    path: impl AsRef<Path>,
-    title: &str,
-    lines: &[Polyline],
-    labels: &[Label],
-) -> Result<()> {
-    check_labels(labels)?;
-    let fig = AnnotatedFigure {
-        geometry: GeometryFigure::new(title, lines)?,
-        labels: labels.to_vec(),
-    };
-    render(path.as_ref(), &fig)
-}
+use crate::report::plot::{
+    annotated_figure, chart, typographic_minus, Bounds, Chart, ChartLine, Color, Label, LabelSide,
+    LegendEntry, LineKind, Polyline, Stroke, BLACK_INDEX,
+};
+use std::path::Path;
 
 // ---------------------------------------------------------------------------
 // Basis functions
@@ -189,51 +95,7 @@ pub fn sample_basis(
 fn short(v: f64) -> String {
     let s = format!("{v:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
-    minus(s.to_string())
-}
-
-/// One basis function's curve in a [`BasisFigure`].
-struct BasisCurve {
-    points: Vec<(f64, f64)>,
-    /// Index into [`PALETTE`].
-    color: usize,
-    /// The B-spline drawn under a rational function.
-    dashed: bool,
-}
-
-struct BasisFigure {
-    frame: Frame,
-    curves: Vec<BasisCurve>,
-    breaks: Vec<f64>,
-}
-
-impl Figure for BasisFigure {
-    fn frame(&self) -> &Frame {
-        &self.frame
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
-        draw_header(root, &self.frame)?;
-        let region = chart_region(root, &self.frame);
-        let mut chart = draw_axes(&region, &self.frame, true)?;
-        let (lo, hi) = (self.frame.y_range.lo, self.frame.y_range.hi);
-        for &k in &self.breaks {
-            let style = ShapeStyle::from(&RGBColor(0x99, 0x99, 0x99)).stroke_width(1);
-            chart.draw_series(DashedLineSeries::new(vec![(k, lo), (k, hi)], 4, 4, style))?;
-        }
-        for curve in &self.curves {
-            let c = palette(curve.color);
-            let points = curve.points.clone();
-            if curve.dashed {
-                let style = ShapeStyle::from(&c).stroke_width(1);
-                chart.draw_series(DashedLineSeries::new(points, 5, 4, style))?;
-            } else {
-                let style = ShapeStyle::from(&c).stroke_width(2);
-                chart.draw_series(LineSeries::new(points, style))?;
-            }
-        }
-        draw_box(root, &self.frame)
-    }
+    typographic_minus(s.to_string())
 }
 
 /// The basis functions of `knots` on one chart, one colour per function,
@@ -252,22 +114,23 @@ pub fn basis_figure(
     let mut legend = Vec::new();
     let rational = sample_basis(knots, weights, SAMPLES_PER_SPAN)?;
     for (i, f) in rational.into_iter().enumerate() {
-        let color = i % 10;
+        let color = Color::Palette(i % 10);
         let label = match weights {
             Some(_) => format!("R{}", subscript(i)),
             None => format!("N{},{}", subscript(i), subscript(p)),
         };
         legend.push(LegendEntry {
             label,
-            color: palette(color),
+            color,
             width: 2,
             stroke: Stroke::Solid,
             marker: None,
         });
-        curves.push(BasisCurve {
+        curves.push(ChartLine {
             points: f,
             color,
-            dashed: false,
+            width: 2,
+            dash: None,
         });
     }
     if weights.is_some() {
@@ -275,21 +138,22 @@ pub fn basis_figure(
             .into_iter()
             .enumerate()
         {
-            curves.push(BasisCurve {
+            // The B-spline drawn under a rational function: thin and dashed.
+            curves.push(ChartLine {
                 points: f,
-                color: i % 10,
-                dashed: true,
+                color: Color::Palette(i % 10),
+                width: 1,
+                dash: Some((5, 4)),
             });
         }
         legend.push(LegendEntry {
             label: "B-splines N (all weights 1)".into(),
-            color: palette(7),
+            color: Color::Palette(7),
             width: 1,
             stroke: Stroke::Dashed,
             marker: None,
         });
     }
-    let breaks = knots.breaks();
     let x = Bounds {
         lo: knots.first(),
         hi: knots.last(),
@@ -302,22 +166,24 @@ pub fn basis_figure(
         hi: y.hi.max(1.0),
     }
     .padded(0.05, "basis values")?;
-    let frame = Frame::fixed(
-        (WIDTH, LINE_CHART_HEIGHT),
-        title,
-        legend,
-        "ξ",
-        "value",
-        x,
-        y,
-        (false, false),
-    );
-    render(
-        path.as_ref(),
-        &BasisFigure {
-            frame,
-            curves,
-            breaks,
+    // Grey dashed lines at the knots, under the curves.
+    let breaks = knots.breaks().into_iter().map(|k| ChartLine {
+        points: vec![(k, y.lo), (k, y.hi)],
+        color: Color::Rgb(0x99, 0x99, 0x99),
+        width: 1,
+        dash: Some((4, 4)),
+    });
+    let lines = breaks.chain(curves).collect();
+    chart(
+        path,
+        &Chart {
+            title: title.to_string(),
+            x_label: "ξ".into(),
+            y_label: "value".into(),
+            x_range: x,
+            y_range: y,
+            legend,
+            lines,
         },
     )
 }
@@ -434,10 +300,11 @@ pub fn contact_sketch(
         ]
     };
     let (slave_line, master_line) = (curve(slave), curve(master));
-    let Some((bx, by)) = polyline_bounds(&[
-        Polyline::new(slave_line.clone(), LineKind::Solid, 0),
-        Polyline::new(master_line.clone(), LineKind::Solid, 0),
-    ]) else {
+    let both = || slave_line.iter().chain(&master_line);
+    let (Some(bx), Some(by)) = (
+        Bounds::of(both().map(|p| p[0])),
+        Bounds::of(both().map(|p| p[1])),
+    ) else {
         return Err(Error::invalid("curves", "empty", "nothing to draw"));
     };
     let (x1, x2, n1) = (cp.x, foot(cp), cp.normal);

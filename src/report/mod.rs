@@ -6,6 +6,7 @@ pub mod atomic;
 pub mod chapter;
 pub mod drawing;
 pub mod facts;
+pub mod figures;
 pub mod history;
 pub mod plot;
 pub mod table;
