@@ -11,6 +11,13 @@
 //! 64 256 elements per direction). Diagnostics: `BENCH_SPLIT=1` also times
 //! the element matrices and the quadrature alone; `BENCH_ASSEMBLY_ONLY=1`
 //! stops after the assembly (for profiling it).
+//!
+//! `cargo run --release --example assembly_bench -- assembly [reps] n1 n2 ...`
+//! times the stiffness assembly alone, `reps` times per mesh (default 7),
+//! and prints the median with the fastest and slowest run: the figures of
+//! src/allocator.rs. Build it with `--no-default-features` for the system
+//! allocator. On a shared machine the spread between runs is wide; compare
+//! medians taken in the same session.
 
 use iga_contact::assembly;
 use iga_contact::dofs::{Body, DofMap};
@@ -18,7 +25,7 @@ use iga_contact::geometry::half_disk;
 use iga_contact::linsolve::{Factoriser, Method, Pattern};
 use iga_contact::material::{Material, Plane};
 use iga_contact::nurbs::Side;
-use iga_contact::space::Space;
+use iga_contact::space::{ElementValues, Space};
 use std::time::Instant;
 
 struct Timing {
@@ -33,7 +40,8 @@ struct Timing {
     residual: f64,
 }
 
-fn run(n: usize) -> iga_contact::Result<Timing> {
+/// The Hertz half disk at n × n elements, with its DOF map.
+fn problem(n: usize) -> iga_contact::Result<(Vec<Body>, DofMap)> {
     let patch = half_disk([0.0, 0.2], 0.2)?.k_refined(2, [n, n])?;
     let bodies = vec![Body {
         name: "half disk".into(),
@@ -46,6 +54,37 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
         .fix_side(0, Side::XiMin, 0, 0.0)?
         .fix_side(0, Side::EtaMin, 1, 0.0)?;
     let map = builder.build();
+    Ok((bodies, map))
+}
+
+/// Median, fastest and slowest of `reps` runs of `f`, in seconds.
+fn spread(
+    reps: usize,
+    mut f: impl FnMut() -> iga_contact::Result<()>,
+) -> iga_contact::Result<[f64; 3]> {
+    let mut times = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        let t = Instant::now();
+        f()?;
+        times.push(t.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    Ok([times[reps / 2], times[0], times[reps - 1]])
+}
+
+/// `reps` assemblies at n × n, as triplets ([`assembly::stiffness`]) and
+/// into the CSC matrix the solver uses ([`assembly::stiffness_matrix`]).
+fn assembly_times(n: usize, reps: usize) -> iga_contact::Result<[[f64; 3]; 2]> {
+    let (bodies, map) = problem(n)?;
+    let triplets = spread(reps, || assembly::stiffness(&bodies, &map).map(drop))?;
+    let csc = spread(reps, || {
+        assembly::stiffness_matrix(&bodies, &map, &[], &[]).map(drop)
+    })?;
+    Ok([triplets, csc])
+}
+
+fn run(n: usize) -> iga_contact::Result<Timing> {
+    let (bodies, map) = problem(n)?;
 
     let t = Instant::now();
     let (trip, _lift) = assembly::stiffness(&bodies, &map)?;
@@ -69,12 +108,15 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
         let t = Instant::now();
         let q: usize = (0..ne)
             .into_par_iter()
-            .map(|e| {
-                bodies[0]
-                    .space
-                    .quadrature(&bodies[0].space.elements[e])
-                    .map(|q| q.len())
-            })
+            .map_init(
+                || ElementValues::new(&bodies[0].space),
+                |values, e| {
+                    let space = &bodies[0].space;
+                    values
+                        .reinit(space, &space.elements[e])
+                        .map(|()| values.n_points())
+                },
+            )
             .sum::<iga_contact::Result<usize>>()?;
         eprintln!(
             "  quadrature alone: {:.3} s ({q} points)",
@@ -123,16 +165,31 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let sizes: Vec<usize> = {
-        let args: Vec<usize> = std::env::args()
-            .skip(1)
-            .map(|a| a.parse())
-            .collect::<Result<_, _>>()?;
-        if args.is_empty() {
-            vec![64, 256]
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("assembly") {
+        args.remove(0);
+        let reps: usize = if args.len() > 1 {
+            args.remove(0).parse()?
         } else {
-            args
+            7
+        };
+        let reps = reps.max(1);
+        let sizes: Vec<usize> = args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
+        println!("| elements | runs | triplets: median (fastest–slowest) s | CSC: median (fastest–slowest) s |");
+        println!("|---|---:|---:|---:|");
+        for n in sizes {
+            let [t, c] = assembly_times(n, reps)?;
+            println!(
+                "| {n}×{n} | {reps} | {:.3} ({:.3}–{:.3}) | {:.3} ({:.3}–{:.3}) |",
+                t[0], t[1], t[2], c[0], c[1], c[2]
+            );
         }
+        return Ok(());
+    }
+    let sizes: Vec<usize> = if args.is_empty() {
+        vec![64, 256]
+    } else {
+        args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?
     };
     println!(
         "| elements | DOFs | nnz | assembly s | pattern+fill s | Cholesky (sym+num) s | Cholesky (num) s | LU s | max |x−1| |"

@@ -7,7 +7,7 @@ use crate::material::{Formulation, Plane};
 use crate::nurbs::Side;
 use crate::pressure::SplinePressure;
 use crate::quadrature;
-use crate::space::{Element, Shape};
+use crate::space::{Element, ElementValues, Shape};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -99,7 +99,17 @@ pub fn btdb(ga: [f64; 2], gb: [f64; 2], d: &[[f64; 3]; 3]) -> [[f64; 2]; 2] {
 /// deviatoric part ∫ Bᵀ D_dev B dΩ — its volumetric part couples the
 /// elements under each pressure function ([`volumetric_terms`]).
 pub fn element_stiffness(body: &Body, e: usize) -> Result<DMatrix<f64>> {
-    Ok(element_integrals(body, e, None)?.0)
+    element_stiffness_with(&mut ElementValues::new(&body.space), body, e)
+}
+
+/// [`element_stiffness`] with caller-owned quadrature buffers, reused
+/// across the elements of one thread.
+pub fn element_stiffness_with(
+    values: &mut ElementValues,
+    body: &Body,
+    e: usize,
+) -> Result<DMatrix<f64>> {
+    Ok(element_integrals(values, body, e, None)?.0)
 }
 
 /// The volumetric part of the mixed formulation's stiffness: one term
@@ -200,7 +210,8 @@ impl<'a> ElementStress<'a> {
             Formulation::Displacement => (Dilatation::Pointwise, own),
             Formulation::LocalMixed => {
                 check_mixed(body)?;
-                let (m, g) = pressure_mass_and_divergence(body, element)?;
+                let mut values = ElementValues::new(&body.space);
+                let (m, g) = pressure_mass_and_divergence(&mut values, body, element)?;
                 (
                     Dilatation::Local(projection_of(&m, &g, body, element)?),
                     own,
@@ -391,36 +402,44 @@ fn check_mixed(body: &Body) -> Result<()> {
 }
 
 /// M = ∫ N_p N_pᵀ dΩ and G = ∫ N_p (∂/∂x, ∂/∂y) dΩ over element `e`.
-fn pressure_mass_and_divergence(body: &Body, e: usize) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+fn pressure_mass_and_divergence(
+    values: &mut ElementValues,
+    body: &Body,
+    e: usize,
+) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     let el = &body.space.elements[e];
     let n = el.cps.len();
     let mut m = DMatrix::zeros(0, 0);
     let mut g = DMatrix::zeros(0, 0);
-    for qp in body.space.quadrature(el)? {
-        add_pressure_terms(body, el, &qp, n, &mut m, &mut g);
+    values.reinit(&body.space, el)?;
+    for q in 0..values.n_points() {
+        add_pressure_terms(body, el, values, q, n, &mut m, &mut g);
     }
     Ok((m, g))
 }
 
+/// Adds Gauss point `q` of `values` (element `el`) to M and G.
 fn add_pressure_terms(
     body: &Body,
     el: &Element,
-    qp: &crate::space::QuadPoint,
+    values: &ElementValues,
+    q: usize,
     n: usize,
     m: &mut DMatrix<f64>,
     g: &mut DMatrix<f64>,
 ) {
-    let np = pressure_basis(body, el, qp.param[0], qp.param[1]);
+    let [xi, eta] = values.param(q);
+    let np = pressure_basis(body, el, xi, eta);
     if m.nrows() != np.len() {
         *m = DMatrix::zeros(np.len(), np.len());
         *g = DMatrix::zeros(np.len(), 2 * n);
     }
     for (i, &pi) in np.iter().enumerate() {
-        let wp = qp.weight * pi;
+        let wp = values.weight(q) * pi;
         for (j, &pj) in np.iter().enumerate() {
             m[(i, j)] += wp * pj;
         }
-        for (a, ga) in qp.shape.grad.iter().enumerate() {
+        for (a, ga) in values.grads(q).iter().enumerate() {
             g[(i, 2 * a)] += wp * ga[0];
             g[(i, 2 * a + 1)] += wp * ga[1];
         }
@@ -446,6 +465,7 @@ fn projection_of(
 /// The element stiffness and, for a body force b, the element load
 /// ∫ R b dΩ, from one pass over the quadrature points.
 fn element_integrals(
+    values: &mut ElementValues,
     body: &Body,
     e: usize,
     force: Option<[f64; 2]>,
@@ -468,21 +488,23 @@ fn element_integrals(
     let mut ke = DMatrix::zeros(2 * n, 2 * n);
     let mut fe = DVector::zeros(if force.is_some() { 2 * n } else { 0 });
     let (mut pm, mut pg) = (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0));
-    for qp in body.space.quadrature(el)? {
+    values.reinit(&body.space, el)?;
+    for q in 0..values.n_points() {
+        let (weight, grad) = (values.weight(q), values.grads(q));
         if let Some(b) = force {
-            add_shape_times(&mut fe, &qp.shape, b, qp.weight);
+            add_shape_times(&mut fe, values.values(q), b, weight);
         }
         if mixed {
-            add_pressure_terms(body, el, &qp, n, &mut pm, &mut pg);
+            add_pressure_terms(body, el, values, q, n, &mut pm, &mut pg);
         }
         // Blocks with b ≥ a only; the lower triangle is mirrored below.
         for a in 0..n {
-            let ga = qp.shape.grad[a];
+            let ga = grad[a];
             for b in a..n {
-                let k = btdb(ga, qp.shape.grad[b], &d);
+                let k = btdb(ga, grad[b], &d);
                 for i in 0..2 {
                     for j in 0..2 {
-                        ke[(2 * a + i, 2 * b + j)] += qp.weight * k[i][j];
+                        ke[(2 * a + i, 2 * b + j)] += weight * k[i][j];
                     }
                 }
             }
@@ -527,7 +549,10 @@ pub fn stiffness(bodies: &[Body], map: &DofMap) -> Result<(Triplets, Vec<f64>)> 
     for (bi, body) in bodies.iter().enumerate() {
         let kes: Vec<Result<DMatrix<f64>>> = (0..body.space.elements.len())
             .into_par_iter()
-            .map(|e| element_stiffness(body, e))
+            .map_init(
+                || ElementValues::new(&body.space),
+                |values, e| element_stiffness_with(values, body, e),
+            )
             .collect();
         for (e, ke) in kes.into_iter().enumerate() {
             let dofs = map.element_dofs(bi, &body.space.elements[e].cps);
@@ -805,12 +830,13 @@ pub fn stiffness_matrix(
                 col_ptr: col_ptr_ref,
                 row_idx: row_idx_ref,
             };
+            let mut values = ElementValues::new(&body.space);
             for (e, el) in body.space.elements.iter().enumerate() {
                 let sy = el.spans[1];
                 if sy < ch.rows[0] || sy - q >= ch.rows[1] {
                     continue;
                 }
-                let (ke, fe) = element_integrals(body, e, force)?;
+                let (ke, fe) = element_integrals(&mut values, body, e, force)?;
                 let dofs = map.element_dofs(ch.body, &el.cps);
                 let free: Vec<Option<usize>> = dofs.iter().map(|&g| map.free(g)).collect();
                 owned.add(map, &dofs, &free, |a, b| ke[(a, b)], vals, lift);
@@ -935,8 +961,8 @@ fn scatter_vector(map: &DofMap, dofs: &[usize], fe: &DVector<f64>, f: &mut [f64]
     }
 }
 
-fn add_shape_times(fe: &mut DVector<f64>, shape: &Shape, v: [f64; 2], weight: f64) {
-    for (a, r) in shape.r.iter().enumerate() {
+fn add_shape_times(fe: &mut DVector<f64>, r: &[f64], v: [f64; 2], weight: f64) {
+    for (a, r) in r.iter().enumerate() {
         fe[2 * a] += weight * r * v[0];
         fe[2 * a + 1] += weight * r * v[1];
     }
@@ -1033,13 +1059,17 @@ pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<
                 let fes: Vec<Result<DVector<f64>>> = space
                     .elements
                     .par_iter()
-                    .map(|el| {
-                        let mut fe = DVector::zeros(2 * el.cps.len());
-                        for qp in space.quadrature(el)? {
-                            add_shape_times(&mut fe, &qp.shape, force, qp.weight);
-                        }
-                        Ok(fe)
-                    })
+                    .map_init(
+                        || ElementValues::new(space),
+                        |values, el| {
+                            let mut fe = DVector::zeros(2 * el.cps.len());
+                            values.reinit(space, el)?;
+                            for q in 0..values.n_points() {
+                                add_shape_times(&mut fe, values.values(q), force, values.weight(q));
+                            }
+                            Ok(fe)
+                        },
+                    )
                     .collect();
                 for (el, fe) in space.elements.iter().zip(fes) {
                     scatter_vector(map, &map.element_dofs(bi, &el.cps), &fe?, &mut f);
@@ -1060,7 +1090,7 @@ pub fn load_vector(bodies: &[Body], map: &DofMap, loads: &[Load]) -> Result<Vec<
                         let (shape, n, len) = space.side_shape(&be, t)?;
                         let tr = traction(n);
                         crate::error::finite("load.traction", tr[0] + tr[1])?;
-                        add_shape_times(&mut fe, &shape, tr, w * len);
+                        add_shape_times(&mut fe, &shape.r, tr, w * len);
                     }
                     scatter_vector(map, &map.element_dofs(bi, &el.cps), &fe, &mut f);
                 }

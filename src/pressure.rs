@@ -17,6 +17,7 @@
 use crate::dofs::Body;
 use crate::error::Result;
 use crate::nurbs::KnotVector;
+use crate::space::{Element, ElementValues, Space};
 use rayon::prelude::*;
 
 /// One pressure function's integrals over one element: its index, ∫_e N̂_i,
@@ -60,7 +61,10 @@ impl SplinePressure {
         let locals: Vec<Result<Vec<Local>>> = space
             .elements
             .par_iter()
-            .map(|el| this.element_integrals(space, el))
+            .map_init(
+                || ElementValues::new(space),
+                |values, el| this.element_integrals(values, space, el),
+            )
             .collect();
         for (el, local) in space.elements.iter().zip(locals) {
             let local = local?;
@@ -83,12 +87,15 @@ impl SplinePressure {
     /// + c), for the pressure functions i not zero on element `el`.
     fn element_integrals(
         &self,
-        space: &crate::space::Space,
-        el: &crate::space::Element,
+        values: &mut ElementValues,
+        space: &Space,
+        el: &Element,
     ) -> Result<Vec<Local>> {
         let mut local: Vec<Local> = Vec::new();
-        for qp in &space.quadrature(el)? {
-            for (i, v) in self.basis(qp.param[0], qp.param[1]) {
+        values.reinit(space, el)?;
+        for q in 0..values.n_points() {
+            let [xi, eta] = values.param(q);
+            for (i, v) in self.basis(xi, eta) {
                 let k = match local.iter().position(|l| l.0 == i) {
                     Some(k) => k,
                     None => {
@@ -96,9 +103,9 @@ impl SplinePressure {
                         local.len() - 1
                     }
                 };
-                let wv = qp.weight * v;
+                let wv = values.weight(q) * v;
                 local[k].1 += wv;
-                for (a, g) in qp.shape.grad.iter().enumerate() {
+                for (a, g) in values.grads(q).iter().enumerate() {
                     local[k].2[2 * a] += wv * g[0];
                     local[k].2[2 * a + 1] += wv * g[1];
                 }

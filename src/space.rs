@@ -2,9 +2,15 @@
 //! products), quadrature, boundary elements, and shape functions mapped to
 //! physical coordinates — Eq. (2), u(ξ,η) = Σ_A R_A(ξ,η) d_A.
 
+mod tables;
+mod values;
+
+pub use values::ElementValues;
+
 use crate::error::{Error, Result};
 use crate::nurbs::{NurbsPatch, PatchBasis, Side};
 use crate::quadrature;
+use tables::SpanTables;
 
 /// One element: the product of a non-empty ξ span and a non-empty η span.
 #[derive(Clone, Debug)]
@@ -29,7 +35,8 @@ pub struct Shape {
 }
 
 /// A quadrature point of an element, with its shape functions and the
-/// weight already multiplied by det J.
+/// weight already multiplied by det J. Element loops use
+/// [`ElementValues`], which allocates nothing per point.
 #[derive(Clone, Debug)]
 pub struct QuadPoint {
     pub param: [f64; 2],
@@ -60,6 +67,8 @@ pub struct Space {
     /// either way round (the quarter annulus, with ξ counter-clockwise along
     /// the arcs and η outward, has det J < 0); a fold shows as a sign change.
     orientation: f64,
+    /// The 1D tables of the ξ and η spans at the Gauss points.
+    tables: [SpanTables; 2],
 }
 
 impl Space {
@@ -94,11 +103,13 @@ impl Space {
                 });
             }
         }
+        let tables = [0, 1].map(|d| SpanTables::new(&patch.knots[d], quad_order));
         let mut space = Self {
             patch,
             elements,
             quad_order,
             orientation: 1.0,
+            tables,
         };
         // The orientation is the sign of det J at the centre of the first element.
         let e = &space.elements[0];
@@ -147,7 +158,35 @@ impl Space {
 
     /// Maps a parametric basis at (ξ, η) to physical shape functions.
     fn shape_of(&self, b: PatchBasis, xi: f64, eta: f64) -> Result<Shape> {
-        let j = self.patch.jacobian_of(&b);
+        let PatchBasis { indices, r, dr } = b;
+        // the parametric derivatives become the physical gradients in place:
+        // one allocation less per point
+        let mut grad = dr;
+        let (x, det_j) = self.physical(&indices, &r, &mut grad, xi, eta)?;
+        Ok(Shape { x, r, grad, det_j })
+    }
+
+    /// The physical point and |det J| of the basis `r`, `grad` (R_a and
+    /// ∂R_a/∂(ξ, η) of control points `indices`), turning `grad` into
+    /// ∂R_a/∂(x, y) in place; fails where the map folds.
+    fn physical(
+        &self,
+        indices: &[usize],
+        r: &[f64],
+        grad: &mut [[f64; 2]],
+        xi: f64,
+        eta: f64,
+    ) -> Result<([f64; 2], f64)> {
+        let points = &self.patch.points;
+        // J and x in the operation order of `NurbsPatch::jacobian_of` and `map`
+        let mut j = [[0.0; 2]; 2];
+        for (k, &a) in indices.iter().enumerate() {
+            for r in 0..2 {
+                for c in 0..2 {
+                    j[r][c] += points[a][r] * grad[k][c];
+                }
+            }
+        }
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if (det * self.orientation).is_nan() || det * self.orientation <= 0.0 || !det.is_finite() {
             return Err(Error::Geometry(format!(
@@ -155,22 +194,18 @@ impl Space {
                 self.orientation
             )));
         }
-        let x = self.patch.map(&b);
-        // the parametric derivatives become the physical gradients in place:
-        // one allocation less per quadrature point
-        let mut grad = b.dr;
-        for d in &mut grad {
+        let mut x = [0.0; 2];
+        for (k, &a) in indices.iter().enumerate() {
+            x[0] += r[k] * points[a][0];
+            x[1] += r[k] * points[a][1];
+        }
+        for d in grad.iter_mut() {
             *d = [
                 (j[1][1] * d[0] - j[1][0] * d[1]) / det,
                 (-j[0][1] * d[0] + j[0][0] * d[1]) / det,
             ];
         }
-        Ok(Shape {
-            x,
-            r: b.r,
-            grad,
-            det_j: det.abs(),
-        })
+        Ok((x, det.abs()))
     }
 
     /// Eq. (2): the displacement u(ξ, η) = Σ_A R_A(ξ, η) d_A at a point of
@@ -216,33 +251,15 @@ impl Space {
         }))
     }
 
-    /// Gauss points of element `e`.
+    /// Gauss points of element `e`, each owning its shape functions. For
+    /// loops over elements, [`ElementValues`] gives the same values without
+    /// an allocation per point.
     pub fn quadrature(&self, e: &Element) -> Result<Vec<QuadPoint>> {
-        let gx = quadrature::on_interval(self.quad_order, e.range[0][0], e.range[0][1]);
-        let gy = quadrature::on_interval(self.quad_order, e.range[1][0], e.range[1][1]);
-        // 1D B-spline tables once per abscissa, combined per point: the
-        // Cox–de Boor work drops from 2·q² to 2·q evaluations per element.
-        let tx: Vec<_> = gx
-            .iter()
-            .map(|&(xi, _)| self.patch.knots[0].basis_ders(e.spans[0], xi, 1))
-            .collect();
-        let ty: Vec<_> = gy
-            .iter()
-            .map(|&(eta, _)| self.patch.knots[1].basis_ders(e.spans[1], eta, 1))
-            .collect();
-        let mut out = Vec::with_capacity(gx.len() * gy.len());
-        for (&(eta, wy), ny) in gy.iter().zip(&ty) {
-            for (&(xi, wx), nx) in gx.iter().zip(&tx) {
-                let b = self.patch.tensor_basis(e.spans, nx, ny);
-                let shape = self.shape_of(b, xi, eta)?;
-                out.push(QuadPoint {
-                    param: [xi, eta],
-                    weight: wx * wy * shape.det_j,
-                    shape,
-                });
-            }
-        }
-        Ok(out)
+        let mut values = ElementValues::new(self);
+        values.reinit(self, e)?;
+        Ok((0..values.n_points())
+            .map(|q| values.quad_point(q))
+            .collect())
     }
 
     /// The element that holds (ξ, η).

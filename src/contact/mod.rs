@@ -6,7 +6,9 @@ pub mod nitsche;
 pub mod pair;
 pub mod params;
 pub mod penalty;
+pub mod point;
 pub mod projection;
+pub mod stability;
 
 pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
 pub use params::{Integration, Modulus, Nitsche, Penalty, Sides, Theta};

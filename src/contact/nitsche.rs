@@ -6,7 +6,7 @@
 //!   − (θ/γ) ∫ σ_n(u) σ_n(v) + (1/γ) ∫ [P(u)]₋ P_θ(v),
 //! which for θ = 0 is the paper's − ∫ \[P(u)\]₋ ⟦v_n⟧.
 
-use super::pair::ContactPoint;
+use super::point::ContactPoint;
 use nalgebra::DMatrix;
 
 /// The projection of Eq. (10): \[x\]₋ = x for x ≤ 0, else 0.

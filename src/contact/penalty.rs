@@ -7,7 +7,8 @@
 //! "small γ₀" there means a large γ here; GetFEM's Nitsche contact brick
 //! takes a stiffness γ₀ in Pa and forms γ₀/h, like this γ.)
 
-use super::pair::ContactPoint;
+use super::point::ContactPoint;
+pub use super::stability::stability_bound;
 use crate::error::Result;
 
 /// Inputs of Eq. (11) at one contact quadrature point.
@@ -121,15 +122,6 @@ pub fn rigid_modes(points: &[[f64; 2]]) -> nalgebra::DMatrix<f64> {
             _ => 0.0,
         }
     })
-}
-
-/// The penalty below which the θ-family loses coercivity, for the trace
-/// constant C_T of an element: the contact terms of the tied form add
-/// −(1 + θ)∫σ_n(v)⟦v_n⟧ + ∫γ⟦v_n⟧² to a(v, v), which Young's inequality bounds
-/// below by a(v, v)(1 − (1 + θ)² C_T / (4γ)). So γ > C_T for θ = 1,
-/// γ > C_T/4 for θ = 0, and any γ > 0 for θ = −1 (bound 0).
-pub fn stability_bound(trace_constant: f64, theta: f64) -> f64 {
-    (1.0 + theta).powi(2) / 4.0 * trace_constant
 }
 
 /// The sharp penalty of a point: `safety` times its stability bound, and

@@ -110,24 +110,47 @@ impl NurbsPatch {
         let n0 = self.knots[0].n_basis();
         let m = (p + 1) * (q + 1);
         let mut indices = Vec::with_capacity(m);
-        let mut r = Vec::with_capacity(m);
-        let mut dr = Vec::with_capacity(m);
+        for b in 0..=q {
+            for a in 0..=p {
+                indices.push(spans[0] - p + a + (spans[1] - q + b) * n0);
+            }
+        }
+        let mut r = vec![0.0; m];
+        let mut dr = vec![[0.0; 2]; m];
+        self.tensor_basis_into(spans, [&nx[0], &nx[1]], [&ny[0], &ny[1]], &mut r, &mut dr);
+        PatchBasis { indices, r, dr }
+    }
+
+    /// [`Self::tensor_basis`] into caller-owned buffers of at least
+    /// (p + 1)(q + 1) entries, ξ index fastest, so that element loops
+    /// allocate nothing per point.
+    pub fn tensor_basis_into(
+        &self,
+        spans: [usize; 2],
+        nx: [&[f64]; 2],
+        ny: [&[f64]; 2],
+        r: &mut [f64],
+        dr: &mut [[f64; 2]],
+    ) {
+        let [p, q] = self.degree();
+        let n0 = self.knots[0].n_basis();
+        let m = (p + 1) * (q + 1);
         let (mut w, mut wx, mut wy) = (0.0, 0.0, 0.0);
+        let mut k = 0;
         for b in 0..=q {
             let j = spans[1] - q + b;
             for a in 0..=p {
                 let i = spans[0] - p + a;
-                let idx = i + j * n0;
-                let wi = self.weights[idx];
+                let wi = self.weights[i + j * n0];
                 let v = nx[0][a] * ny[0][b] * wi;
                 let vx = nx[1][a] * ny[0][b] * wi;
                 let vy = nx[0][a] * ny[1][b] * wi;
                 w += v;
                 wx += vx;
                 wy += vy;
-                indices.push(idx);
-                r.push(v);
-                dr.push([vx, vy]);
+                r[k] = v;
+                dr[k] = [vx, vy];
+                k += 1;
             }
         }
         for k in 0..m {
@@ -138,7 +161,6 @@ impl NurbsPatch {
             ];
             r[k] = v / w;
         }
-        PatchBasis { indices, r, dr }
     }
 
     /// The geometry map of Eq. (1): the physical point
