@@ -13,15 +13,10 @@ use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-/// Coordinate-format entries over the free DOFs. Duplicates are summed when
-/// the matrix is built, so element matrices are appended as they come.
-#[derive(Clone, Debug, Default)]
-pub struct Triplets {
-    pub rows: Vec<usize>,
-    pub cols: Vec<usize>,
-    pub vals: Vec<f64>,
-}
+pub use crate::sparse::Triplets;
 
+// Assembly's own way of filling triplets: element matrices through the DOF
+// map (the type itself lives below, in `sparse`, for the linear algebra).
 impl Triplets {
     /// Appends an element matrix `ke` acting on the global DOFs `dofs`.
     /// Columns of prescribed DOFs move to the right-hand side: `lift[i] +=
@@ -66,14 +61,6 @@ impl Triplets {
                 }
             }
         }
-    }
-
-    pub fn len(&self) -> usize {
-        self.vals.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.vals.is_empty()
     }
 }
 

@@ -27,6 +27,7 @@ pub mod resources;
 pub mod scene;
 pub mod solver;
 pub mod space;
+pub mod sparse;
 pub mod timing;
 pub mod wellposed;
 

@@ -6,13 +6,14 @@
 //! stored pairs, with H_0 r a triangular solve with the kernel factors.
 //! Cost per iteration: O(n k) for k pairs plus one solve.
 
+use super::attempt::{end_iteration, Attempt, Iterate};
 use super::history::{Event, History};
 use super::kernel::Kernels;
+use super::line_search::{line_search, Fallback};
+use super::options::{CorrectOn, Damping, SolverOptions, Start};
+use super::stopping::Tracker;
 use super::system::System;
-use super::{
-    dot, end_iteration, line_search, norm, Attempt, CorrectOn, Damping, Fallback, Iterate,
-    SolverOptions, Start, Tracker,
-};
+use super::vector::{dot, norm};
 use crate::error::Result;
 use crate::problem::Problem;
 

@@ -1,84 +1,19 @@
-//! Factorising the kernels (17)–(18) of one solve.
-//!
-//! The default ([`Factorisation::Auto`]) factorises once per problem: the
-//! bulk stiffness plus the penalty term of the whole potential contact
-//! boundary, A₀, by sparse Cholesky with the contact layer ordered last
-//! ([`crate::condense`]). Every kernel, of every θ (θ = 1 included) and
-//! every active set, is A₀ plus a matrix on the layer, so it costs one
-//! dense factorisation of the layer's Schur complement plus that matrix
-//! ([`super::trace`]).
-//!
-//! The two earlier ways factorise each assembled kernel on its own:
-//! sparse LU, or — for θ ≤ 0 — Cholesky of its symmetric positive
-//! definite part with a Sherman–Morrison–Woodbury correction of the trace
-//! rows ([`Problem::kernel_split`], [`crate::linsolve::LowRankCorrected`]).
-//!
-//! Which active set a secant kernel is built for is decided here too: the
-//! set of its iterate, with the growth since the last kernel cut after a
-//! full step ([`cut_growth`], [`super::Growth`]; why, in [`super::newton`]).
+//! The kernels (17)–(18) of one solve: the tied kernel, the secant
+//! kernels with the floating guard, and which active set a secant kernel
+//! is built for: the set of its iterate, with the growth since the last
+//! kernel cut after a full step ([`cut_growth`], [`super::Growth`]; why, in
+//! [`super::newton`]). How each is factorised: [`factor_kernel`].
 
+pub use super::factorise::{factor_kernel, Factorisation};
 use super::guard::Guard;
 use super::history::Event;
+use super::options::{Growth, Start};
 use super::system::{LinearSolve, System};
-use super::{Growth, Start};
+use super::vector::dot;
 use crate::contact::nitsche::heaviside;
 use crate::error::Result;
-use crate::linsolve::{Factor, Factoriser, Method};
-use crate::problem::{Kernel, Problem};
-use serde::{Deserialize, Serialize};
+use crate::problem::Problem;
 use std::rc::Rc;
-
-/// How the solvers factorise their kernels.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Factorisation {
-    /// Factorise once: Cholesky of A₀ with the contact layer last, then a
-    /// dense factorisation of the layer's Schur complement per kernel.
-    /// Falls back to [`Factorisation::LowRank`] when the layer is too
-    /// large for dense kernels ([`super::trace::MAX_LAYER`]).
-    #[default]
-    Auto,
-    /// Per kernel: Cholesky plus the low-rank trace correction where it
-    /// applies (every point θ ≤ 0, the symmetric part positive definite,
-    /// the set-up check passed), sparse LU otherwise.
-    LowRank,
-    /// Sparse LU of the assembled kernel, always.
-    Lu,
-}
-
-/// Factorises the assembled full-space kernel `kind` of `problem` on its
-/// own, reusing the symbolic analyses kept in `fac`: by LU for
-/// [`Factorisation::Lu`], by the low-rank path otherwise (`Auto` has no
-/// single-kernel form: it factorises A₀ once for a whole solve). A
-/// low-rank factorisation that needed refinement, or was refused in
-/// favour of LU, is logged in `events` ([`Event::KernelRefined`],
-/// [`Event::KernelLuFallback`]); LU chosen because some θ > 0 is the
-/// design, not an event.
-pub fn factor_kernel(
-    problem: &Problem,
-    fac: &mut Factoriser,
-    kind: Kernel,
-    how: Factorisation,
-    events: &mut Vec<Event>,
-) -> Result<Factor> {
-    if how != Factorisation::Lu {
-        if let Some(split) = problem.kernel_split(kind)? {
-            match fac.factor_low_rank(&split.spd, &split.u, &split.v) {
-                Ok(f) => {
-                    if matches!(&f, Factor::LowRank(l) if l.refines()) {
-                        events.push(Event::KernelRefined);
-                    }
-                    return Ok(f);
-                }
-                // not positive definite, or ill-conditioned: LU decides;
-                // out of memory or a singular kernel LU cannot help
-                Err(e) if e.lu_may_help() => events.push(Event::KernelLuFallback),
-                Err(e) => return Err(e.into()),
-            }
-        }
-    }
-    Ok(fac.factor(&problem.kernel(kind)?, Method::Lu)?)
-}
 
 /// A kernel ready for solves, with the activity it was built for and the
 /// points the floating guard forced active.
@@ -334,7 +269,7 @@ impl<'s, 'p> Kernels<'s, 'p> {
             .iter()
             .map(|m| self.sys.coords(m))
             .collect();
-        let f0: Vec<f64> = modes.iter().map(|m| super::dot(m, r)).collect();
+        let f0: Vec<f64> = modes.iter().map(|m| dot(m, r)).collect();
         let t = self.guard.balance(&self.sys.p_values(u), &f0);
         let mut moved = false;
         for (m, tk) in modes.iter().zip(&t) {

@@ -49,13 +49,14 @@
 //! 23 maps against 6 on 128², factor 20). Penalty continuation and a
 //! coarse-mesh start were not needed.
 
+use super::attempt::{end_iteration, Attempt, Iterate};
 use super::history::{Event, History};
 use super::kernel::Kernels;
+use super::line_search::{line_search, Fallback};
+use super::options::{Damping, SolverOptions, Start};
+use super::stopping::Tracker;
 use super::system::System;
-use super::{
-    end_iteration, line_search, norm, Attempt, Damping, Fallback, Iterate, SolverOptions, Start,
-    Tracker,
-};
+use super::vector::norm;
 use crate::error::Result;
 use crate::problem::Problem;
 

@@ -4,10 +4,11 @@
 //! every contact point, kernels for a given activity, and the floor of
 //! what floating point can resolve.
 
+use super::factorise::{factor_kernel, Factorisation};
 use super::history::Event;
-use super::kernel::{factor_kernel, Factorisation};
+use super::stopping::Floor;
 use super::trace::{DenseLu, TraceProblem};
-use super::Floor;
+use super::vector::max_displacement;
 use crate::error::Result;
 use crate::linsolve::{Factor, Factoriser};
 use crate::problem::{ContactState, Kernel, Problem};
@@ -145,7 +146,7 @@ impl<'p> System<'p> for BodySystem<'p> {
     }
 
     fn max_displacement(&self, u: &[f64]) -> f64 {
-        super::max_displacement(&self.problem.map.expand(u))
+        max_displacement(&self.problem.map.expand(u))
     }
 
     fn body(&self, u: Vec<f64>) -> Vec<f64> {
@@ -192,7 +193,7 @@ impl<'p> System<'p> for TraceSystem<'p> {
     }
 
     fn max_displacement(&self, u: &[f64]) -> f64 {
-        super::max_displacement(u)
+        max_displacement(u)
     }
 
     fn body(&self, u: Vec<f64>) -> Vec<f64> {

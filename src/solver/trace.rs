@@ -16,7 +16,8 @@
 //! operations, so an iteration costs O(ℓ²) and a kernel O(ℓ³) — against
 //! a sparse triangular pass over the whole body before.
 
-use super::Floor;
+use super::stopping::Floor;
+use super::vector::norm;
 use crate::condense::Condensation;
 use crate::contact::nitsche::{add_force_at, add_force_size_at, local_matrix, Law};
 use crate::contact::ContactPoint;
@@ -207,8 +208,8 @@ impl<'a> TraceProblem<'a> {
             }
         }
         let floor = Floor {
-            typical: f64::EPSILON * super::norm(&size),
-            cancelling: f64::EPSILON * super::norm(&wide),
+            typical: f64::EPSILON * norm(&size),
+            cancelling: f64::EPSILON * norm(&wide),
         };
         (r, ContactState { active }, floor)
     }

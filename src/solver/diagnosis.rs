@@ -1,0 +1,62 @@
+//! Why a solve failed: the reason its stopping rule gave, completed by
+//! what the last iterate and the history show (a floating body, an exact
+//! cycle, skipped BFGS pairs, points below the stability bound).
+
+use super::history::History;
+use super::stopping::Halt;
+use super::system::System;
+use crate::error::Error;
+use crate::problem::Problem;
+
+/// The error of a failed solve, with what the last iterate `u` (in the
+/// space of `sys`) and the history say about why: a floating body, an
+/// exact cycle, skipped BFGS pairs, active points below the stability
+/// bound of the penalty.
+pub(crate) fn failure(
+    sys: &dyn System,
+    problem: &Problem,
+    u: &[f64],
+    reason: &Halt,
+    history: History,
+) -> Error {
+    let mut parts = vec![reason.to_string()];
+    if let Some(period) = history.cycle_period() {
+        parts.push(format!(
+            "the iterates repeat with period {period} (active points {})",
+            history.rows[history.len() - period..]
+                .iter()
+                .map(|r| r.active_points.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    let p = sys.p_values(u);
+    let active: Vec<usize> = (0..p.len()).filter(|&q| p[q] <= 0.0).collect();
+    if active.is_empty() {
+        parts.push("active set empty: the body floats".into());
+    } else {
+        let below = active
+            .iter()
+            .filter(|&&q| problem.points[q].below_stability_bound())
+            .count();
+        if below > 0 {
+            parts.push(format!(
+                "{below} of the {} active points {} a penalty below the stability bound of their element, so the tangent need not be coercive (raise nitsche.penalty_factor, or use theta = -1)",
+                active.len(),
+                if below == 1 { "has" } else { "have" }
+            ));
+        }
+    }
+    let skipped = history.skipped_updates();
+    if skipped > 0 {
+        parts.push(if skipped == 1 {
+            "curvature condition failed once".to_string()
+        } else {
+            format!("curvature condition failed {skipped} times")
+        });
+    }
+    Error::NotConverged {
+        reason: parts.join("; "),
+        history,
+    }
+}
