@@ -509,19 +509,19 @@ fn the_equation_index_names_only_things_that_exist() {
     }
     let numbers: Vec<usize> = sections.iter().map(|s| s.0).collect();
     assert_eq!(numbers, (1..=19).collect::<Vec<_>>());
-    let sources: String = [
-        "src",
-        "src/contact",
-        "src/nurbs",
-        "src/solver",
-        "src/report",
-    ]
-    .iter()
-    .flat_map(|d| std::fs::read_dir(root.join(d)).unwrap())
-    .map(|e| e.unwrap().path())
-    .filter(|p| p.extension().is_some_and(|e| e == "rs"))
-    .map(|p| read(&p))
-    .collect();
+    // every source file of the library, at any depth (modules are folders)
+    let mut sources = String::new();
+    let mut stack = vec![root.join("src")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let p = entry.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                sources.push_str(&read(&p));
+            }
+        }
+    }
     for (n, text) in sections {
         let body = &text[..text[1..].find("\n## ").map_or(text.len(), |i| i + 1)];
         let line = |key: &str| {
