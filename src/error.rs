@@ -4,7 +4,7 @@
 //! input names the field path and the offending value, a solver failure
 //! carries its full iteration history.
 
-use crate::solver::history::History;
+use crate::history::History;
 
 /// Errors raised anywhere in the pipeline geometry → space → assembly →
 /// contact → solver → report.

@@ -14,6 +14,7 @@ pub mod contact;
 pub mod dofs;
 pub mod error;
 pub mod geometry;
+pub mod history;
 pub mod interface;
 pub mod linsolve;
 pub mod material;
