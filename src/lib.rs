@@ -32,4 +32,4 @@ pub mod sparse;
 pub mod timing;
 pub mod wellposed;
 
-pub use error::{Error, Result};
+pub use error::{Error, ErrorKind, Result};
