@@ -318,7 +318,7 @@ impl std::fmt::Display for Warning {
                 singular,
             } => write!(
                 f,
-                "contact[{pair}]: the contact zone reaches the {} of the slave side {side} of {slave:?} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: extend the slave side beyond the contact zone",
+                "contact[{pair}]: the contact zone reaches the {} of the slave side {side} of {slave:?} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: {}",
                 match end {
                     SideEnd::Start => "start",
                     SideEnd::End => "end",
@@ -329,6 +329,14 @@ impl std::fmt::Display for Warning {
                     ", where the map is singular (det J = 0) and the pressure is not a contact pressure"
                 } else {
                     ""
+                },
+                // a side that ends at a collapsed corner cannot be extended
+                // on its own patch: only a body of several patches has a
+                // boundary that goes on past it
+                if *singular {
+                    "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml)"
+                } else {
+                    "extend the slave side beyond the contact zone"
                 }
             ),
             Warning::UnresolvedContact {
