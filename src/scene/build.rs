@@ -3,7 +3,7 @@
 
 use super::patches::in_body;
 use super::rules::show;
-use super::Scene;
+use super::{MasterSpec, Scene};
 use crate::assembly::Load;
 use crate::contact::{contact_points, ContactPair, Master};
 use crate::dofs::{Body, DofMap};
@@ -205,10 +205,12 @@ impl Scene {
                 }
                 (None, None) => unreachable!("validated: a slave side or boundary"),
             };
-            let master = match (&c.master.rigid_segment, &c.master.body, c.master.side) {
-                (Some(seg), _, _) => Master::Rigid(geometry::segment(seg.from, seg.to)?),
-                (None, Some(name), Some(side)) => {
-                    let body = idx(name);
+            let master = match &c.master {
+                MasterSpec::RigidSegment { from, to } => {
+                    Master::Rigid(geometry::segment(*from, *to)?)
+                }
+                MasterSpec::Body { body: name, side } => {
+                    let (body, side) = (idx(name), *side);
                     if degenerate_side(&bodies[body].space.patch, side) {
                         return Err(Error::invalid(
                             format!("contact[{i}].master.side"),
@@ -218,7 +220,6 @@ impl Scene {
                     }
                     Master::Body { body, side }
                 }
-                _ => unreachable!("validated: a rigid segment or a body and side"),
             };
             for (slave, slave_side) in pieces {
                 pairs.push(ContactPair {

@@ -2,7 +2,7 @@
 //! vectors, nothing of the size of the discretisation allocated.
 
 use super::patches::in_body;
-use super::{RefineSpec, Scene};
+use super::{MasterSpec, RefineSpec, Scene};
 use crate::error::Result;
 use crate::nurbs::{KnotVector, NurbsPatch};
 use crate::resources::{BodySize, Estimate, Factoring, PairSize};
@@ -51,8 +51,8 @@ impl Scene {
                 let mut master_breaks = 2.0;
                 // Two rows of slave control points reach the normal stress.
                 let mut layer = 4.0 * s.n[along] as f64;
-                if let (Some(name), Some(side)) = (&c.master.body, c.master.side) {
-                    let m = &sizes[first[names[name.as_str()]]];
+                if let MasterSpec::Body { body, side } = &c.master {
+                    let m = &sizes[first[names[body.as_str()]]];
                     degree = degree.max(m.degree[0].max(m.degree[1]));
                     coupled += m.element_points();
                     master_breaks = m.elements[side.along()] as f64 + 1.0;
@@ -90,7 +90,7 @@ impl Scene {
                     .iter()
                     .zip(&mp.counts)
                     .map(|(patch, c)| {
-                        let elements = b.refine.as_ref().map(|r| mp.divisions(c, r.elements));
+                        let elements = b.refine.as_ref().map(|r| mp.divisions(c, r.elements()));
                         self.patch_size(i, patch, elements)
                     })
                     .collect()
@@ -111,14 +111,12 @@ impl Scene {
         // Per direction: basis functions and elements after refinement.
         let count = |kv: &KnotVector, d: usize| -> (usize, usize, usize) {
             let spans = kv.spans().len();
-            let elements = elements.or(b.refine.as_ref().map(|r| r.elements));
+            let elements = elements.or(b.refine.as_ref().map(RefineSpec::elements));
             let elements = &elements.unwrap_or([1, 1]);
-            match &b.refine {
+            match b.refine {
                 None => (kv.n_basis(), spans, kv.degree()),
-                Some(RefineSpec {
-                    degree: Some(p), ..
-                }) => {
-                    let p = (*p).max(kv.degree());
+                Some(RefineSpec::KRefine { degree, .. }) => {
+                    let p = degree.max(kv.degree());
                     let mult = kv.multiplicities();
                     let raise = p - kv.degree();
                     let interior: usize = mult[1..mult.len() - 1].iter().map(|m| m + raise).sum();
@@ -128,10 +126,9 @@ impl Scene {
                         p,
                     )
                 }
-                Some(RefineSpec {
-                    lagrange: Some(q), ..
-                }) => (elements[d] * q + 1, elements[d], *q),
-                Some(_) => unreachable!("validated: degree or lagrange"),
+                Some(RefineSpec::Lagrange { degree: q, .. }) => {
+                    (elements[d] * q + 1, elements[d], q)
+                }
             }
         };
         let (n0, e0, p0) = count(&exact.knots[0], 0);
@@ -139,7 +136,7 @@ impl Scene {
         let (field, value) = match &b.refine {
             Some(r) => (
                 format!("body[{i}].refine.elements"),
-                format!("{:?}", r.elements),
+                format!("{:?}", r.elements()),
             ),
             None => (
                 format!("body[{i}].geometry"),

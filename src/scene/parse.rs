@@ -60,6 +60,51 @@ fn syntax_error(text: &str, e: toml::de::Error) -> Error {
     )
 }
 
+/// An error in the choice of keys of one table (`refine`, `master`),
+/// raised while serde reads the table, so that the key path names it.
+///
+/// The path serde reports stops at the table, so the error carries the key
+/// below it (empty: the table itself) and the value to show, which
+/// [`Scene::from_toml_str`] puts back; the message through serde is this,
+/// encoded between separators no TOML key or value in an error contains.
+pub(super) struct TableError {
+    key: &'static str,
+    value: String,
+    reason: String,
+}
+
+const SEP: char = '\u{1f}';
+
+impl TableError {
+    pub(super) fn new(
+        key: &'static str,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        Self {
+            key,
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// The key, value and reason encoded in `message`, if it is one.
+    fn decode(message: &str) -> Option<(&str, &str, &str)> {
+        let mut parts = message.strip_prefix(SEP)?.splitn(3, SEP);
+        Some((parts.next()?, parts.next()?, parts.next()?))
+    }
+}
+
+impl std::fmt::Display for TableError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{SEP}{}{SEP}{}{SEP}{}",
+            self.key, self.value, self.reason
+        )
+    }
+}
+
 impl Scene {
     /// Parses and validates a scene. Every error names the key path and the
     /// offending value.
@@ -71,12 +116,18 @@ impl Scene {
             let shown = lookup(&root, &path)
                 .map(|v| shorten(v.to_string()))
                 .unwrap_or_else(|| "(absent)".into());
-            let message = e.into_inner().message().trim().replace('\n', " ");
+            let message = e.into_inner().message().to_string();
             let field = match path.to_string().as_str() {
                 "." => "scene".to_string(),
                 p => p.to_string(),
             };
-            Error::invalid(field, shown, message)
+            match TableError::decode(&message) {
+                Some(("", value, reason)) => Error::invalid(field, value, reason),
+                Some((key, value, reason)) => {
+                    Error::invalid(format!("{field}.{key}"), value, reason)
+                }
+                None => Error::invalid(field, shown, message.trim().replace('\n', " ")),
+            }
         })?;
         scene.validate()?;
         Ok(scene)

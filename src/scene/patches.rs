@@ -7,6 +7,16 @@ use crate::error::{Error, Result};
 use crate::geometry;
 use crate::nurbs::NurbsPatch;
 
+/// The interpolant is built for one patch; a body of several is refused
+/// (by validation, and here for a scene changed since).
+pub(super) fn multipatch_lagrange(i: usize, degree: usize) -> Error {
+    Error::invalid(
+        format!("body[{i}].refine.lagrange"),
+        degree,
+        "a body of several patches is refined by `degree` only",
+    )
+}
+
 /// An error of the geometry layer, retold with the scene key path of body
 /// `i` (`geometry` the path of its geometry table): library field names
 /// such as `radius` or `patch.control_points[0]` are not scene keys.
@@ -48,19 +58,12 @@ impl Scene {
     fn body_patch(&self, i: usize) -> Result<NurbsPatch> {
         let b = &self.bodies[i];
         let exact = self.exact_patch(i)?;
-        let refined = match &b.refine {
+        let refined = match b.refine {
             None => Ok(exact),
-            Some(RefineSpec {
-                degree: Some(p),
-                elements,
-                ..
-            }) => exact.k_refined(*p, *elements),
-            Some(RefineSpec {
-                lagrange: Some(q),
-                elements,
-                ..
-            }) => geometry::lagrange_interpolant(&exact, *q, *elements),
-            Some(_) => unreachable!("validated: degree or lagrange"),
+            Some(RefineSpec::KRefine { degree, elements }) => exact.k_refined(degree, elements),
+            Some(RefineSpec::Lagrange { degree, elements }) => {
+                geometry::lagrange_interpolant(&exact, degree, elements)
+            }
         };
         refined.map_err(|e| match e {
             Error::InvalidInput { value, reason, .. } => Error::invalid(
@@ -82,21 +85,19 @@ impl Scene {
         };
         let f = format!("body[{i}].geometry.{}", b.geometry.kind());
         let mp = mp.map_err(|e| in_body(e, i, &b.name, &f))?;
-        match &b.refine {
+        match b.refine {
             None => Ok(mp.patches),
-            Some(RefineSpec {
-                degree: Some(p),
-                elements,
-                ..
-            }) => mp.refined(*p, *elements).map_err(|e| match e {
-                Error::InvalidInput { value, reason, .. } => Error::invalid(
-                    format!("body[{i}].refine"),
-                    value,
-                    format!("{reason} (in the refined patches of body {:?})", b.name),
-                ),
-                other => in_body(other, i, &b.name, ""),
-            }),
-            Some(_) => unreachable!("validated: a multi-patch body is refined by degree"),
+            Some(RefineSpec::KRefine { degree, elements }) => {
+                mp.refined(degree, elements).map_err(|e| match e {
+                    Error::InvalidInput { value, reason, .. } => Error::invalid(
+                        format!("body[{i}].refine"),
+                        value,
+                        format!("{reason} (in the refined patches of body {:?})", b.name),
+                    ),
+                    other => in_body(other, i, &b.name, ""),
+                })
+            }
+            Some(RefineSpec::Lagrange { degree, .. }) => Err(multipatch_lagrange(i, degree)),
         }
     }
 }

@@ -9,6 +9,7 @@ use crate::nurbs::Side;
 use crate::solver::SolverOptions;
 use serde::{Deserialize, Serialize};
 
+use super::parse::TableError;
 use super::{GeometrySpec, RefineSpec};
 #[cfg(doc)]
 use crate::wellposed;
@@ -149,16 +150,83 @@ pub struct ContactSpec {
 
 /// The master of a contact pair: either `{ rigid_segment = { from, to } }`
 /// (a rigid obstacle on the right of the segment's direction) or
-/// `{ body = NAME, side = SIDE }`.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MasterSpec {
+/// `{ body = NAME, side = SIDE }`. Which of the two a table is, is read
+/// when the scene is parsed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawMaster", into = "RawMaster")]
+pub enum MasterSpec {
+    /// A straight rigid obstacle from `from` to `to`.
+    RigidSegment { from: [f64; 2], to: [f64; 2] },
+    /// Side `side` of the (one-patch) body named `body`.
+    Body { body: String, side: Side },
+}
+
+impl MasterSpec {
+    /// The name of the master body; `None` for a rigid master.
+    pub fn body(&self) -> Option<&str> {
+        match self {
+            MasterSpec::Body { body, .. } => Some(body),
+            MasterSpec::RigidSegment { .. } => None,
+        }
+    }
+}
+
+/// The `master` table as written, before the choice of keys is read.
+#[derive(Clone, Serialize, Deserialize)]
+// type errors name the type it reads into, as they did before it existed
+#[serde(deny_unknown_fields, expecting = "struct MasterSpec")]
+struct RawMaster {
     #[serde(default)]
-    pub rigid_segment: Option<SegmentSpec>,
+    rigid_segment: Option<SegmentSpec>,
     #[serde(default)]
-    pub body: Option<String>,
+    body: Option<String>,
     #[serde(default)]
-    pub side: Option<Side>,
+    side: Option<Side>,
+}
+
+impl TryFrom<RawMaster> for MasterSpec {
+    type Error = TableError;
+
+    fn try_from(m: RawMaster) -> Result<Self, TableError> {
+        match (m.rigid_segment, m.body, m.side) {
+            (Some(SegmentSpec { from, to }), None, None) => {
+                Ok(MasterSpec::RigidSegment { from, to })
+            }
+            (None, Some(body), Some(side)) => Ok(MasterSpec::Body { body, side }),
+            (None, Some(name), None) => Err(TableError::new(
+                "side",
+                "(absent)",
+                format!("the master body {name:?} needs a `side`"),
+            )),
+            (Some(_), _, _) => Err(TableError::new(
+                "",
+                "rigid_segment and body",
+                "give either `rigid_segment` or `body` and `side`, not both",
+            )),
+            (None, None, _) => Err(TableError::new(
+                "",
+                "{}",
+                "needs `rigid_segment = { from, to }` or `body` and `side`",
+            )),
+        }
+    }
+}
+
+impl From<MasterSpec> for RawMaster {
+    fn from(m: MasterSpec) -> Self {
+        match m {
+            MasterSpec::RigidSegment { from, to } => RawMaster {
+                rigid_segment: Some(SegmentSpec { from, to }),
+                body: None,
+                side: None,
+            },
+            MasterSpec::Body { body, side } => RawMaster {
+                rigid_segment: None,
+                body: Some(body),
+                side: Some(side),
+            },
+        }
+    }
 }
 
 /// A straight rigid obstacle from `from` to `to`.

@@ -1,8 +1,9 @@
 //! Every rule a scene must satisfy beyond its shape, each failure naming
 //! the key path and the value.
 
+use super::patches::multipatch_lagrange;
 use super::rules::{finite, finite_point, in_range};
-use super::{load_kind, Scene, MAX_VTU_SUBDIVISIONS};
+use super::{load_kind, MasterSpec, RefineSpec, Scene, MAX_VTU_SUBDIVISIONS};
 use crate::assembly::Load;
 use crate::error::{Error, Result};
 use crate::material::{Formulation, Plane};
@@ -41,12 +42,9 @@ impl Scene {
             b.geometry.validate(&format!("{f}.geometry"))?;
             if let Some(r) = &b.refine {
                 r.validate(&format!("{f}.refine"), b.geometry.degree())?;
-                if let (Some(q), Some(_)) = (r.lagrange, b.geometry.multipatch()) {
-                    return Err(Error::invalid(
-                        format!("{f}.refine.lagrange"),
-                        q,
-                        "a body of several patches is refined by `degree` only",
-                    ));
+                if let (RefineSpec::Lagrange { degree, .. }, Some(_)) = (r, b.geometry.multipatch())
+                {
+                    return Err(multipatch_lagrange(i, *degree));
                 }
             }
             if b.formulation != Formulation::Displacement && b.geometry.multipatch().is_some() {
@@ -128,22 +126,21 @@ impl Scene {
                     ))
                 }
             }
-            let m = &c.master;
-            match (&m.rigid_segment, &m.body, &m.side) {
-                (Some(seg), None, None) => {
+            match &c.master {
+                MasterSpec::RigidSegment { from, to } => {
                     let g = format!("{f}.master.rigid_segment");
-                    finite_point(&format!("{g}.from"), seg.from)?;
-                    finite_point(&format!("{g}.to"), seg.to)?;
-                    let len = (seg.to[0] - seg.from[0]).hypot(seg.to[1] - seg.from[1]);
+                    finite_point(&format!("{g}.from"), *from)?;
+                    finite_point(&format!("{g}.to"), *to)?;
+                    let len = (to[0] - from[0]).hypot(to[1] - from[1]);
                     if !(len.is_finite() && len > 0.0) {
                         return Err(Error::invalid(
                             format!("{g}.to"),
-                            format!("{:?}", seg.to),
+                            format!("{to:?}"),
                             "must differ from `from` by a finite distance",
                         ));
                     }
                 }
-                (None, Some(name), Some(side)) => {
+                MasterSpec::Body { body: name, side } => {
                     let master = self.resolve(&names, format!("{f}.master.body"), name)?;
                     self.one_patch(master, &format!("{f}.master.side"), side.name())?;
                     if master == slave {
@@ -154,32 +151,11 @@ impl Scene {
                         ));
                     }
                 }
-                (None, Some(name), None) => {
-                    return Err(Error::invalid(
-                        format!("{f}.master.side"),
-                        "(absent)",
-                        format!("the master body {name:?} needs a `side`"),
-                    ))
-                }
-                (Some(_), _, _) => {
-                    return Err(Error::invalid(
-                        format!("{f}.master"),
-                        "rigid_segment and body",
-                        "give either `rigid_segment` or `body` and `side`, not both",
-                    ))
-                }
-                (None, None, _) => {
-                    return Err(Error::invalid(
-                        format!("{f}.master"),
-                        "{}",
-                        "needs `rigid_segment = { from, to }` or `body` and `side`",
-                    ))
-                }
             }
             c.nitsche.validate(&format!("{f}.nitsche"))?;
             if let Some(n) = c.nitsche.gauss_points {
                 let mut p = self.bodies[slave].degree();
-                if let Some(m) = c.master.body.as_ref().and_then(|m| names.get(m.as_str())) {
+                if let Some(m) = c.master.body().and_then(|m| names.get(m)) {
                     p = p.max(self.bodies[*m].degree());
                 }
                 self.enough_points(
