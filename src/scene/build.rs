@@ -3,9 +3,11 @@
 
 use super::patches::in_body;
 use super::rules::show;
+use super::validate::Valid;
 use super::{MasterSpec, Scene};
 use crate::assembly::Load;
-use crate::contact::{contact_points, ContactPair, Master};
+use crate::contact::pair::checked_contact_points;
+use crate::contact::{ContactPair, Master};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
@@ -96,13 +98,12 @@ fn corner_at(
     Ok((p, a))
 }
 
-impl Scene {
+impl Valid<'_> {
     /// Refines every body (with [`MapCheck::EveryPoint`], checking its map
     /// at every quadrature point and naming the body where it folds),
     /// numbers the DOFs and resolves loads and contact pairs; assembles
     /// nothing.
     pub(super) fn discretise(&self, check: MapCheck) -> Result<Discrete> {
-        self.validate()?;
         let names = self.body_index();
         // every body is one or more patches: `first[i]` is the patch index
         // (into `bodies`) of scene body i's first
@@ -250,7 +251,7 @@ impl Scene {
             pairs,
         } = self.discretise(MapCheck::OnFailure)?;
         clock.lap(Phase::ParseAndBuild);
-        let points = contact_points(&bodies, &map, &pairs)
+        let points = checked_contact_points(&bodies, &map, &pairs)
             .and_then(|points| {
                 wellposed::check_rigid_modes(&bodies, &map, &points)?;
                 Ok(points)
@@ -272,11 +273,13 @@ impl Scene {
             Ok(_) => e,
         }
     }
+}
 
+impl Scene {
     /// Validates the scene and assembles its [`Problem`] (no solve),
     /// rejecting rigid motions nothing holds
     /// ([`wellposed::check_rigid_modes`]).
     pub fn build(&self) -> Result<Problem> {
-        self.assemble(&mut Stopwatch::start())
+        self.valid()?.assemble(&mut Stopwatch::start())
     }
 }

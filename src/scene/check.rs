@@ -3,7 +3,7 @@
 
 use super::build::MapCheck;
 use super::Scene;
-use crate::contact::contact_points;
+use crate::contact::pair::checked_contact_points;
 use crate::error::Result;
 use crate::resources::{human_bytes, human_count, Budget, Estimate};
 use crate::solver;
@@ -48,10 +48,11 @@ impl Scene {
     /// body at every quadrature point, the contact points and the rigid
     /// modes — without assembling or solving anything.
     pub fn check(&self, budget: &Budget) -> Result<CheckReport> {
-        let estimate = self.estimate()?;
+        let valid = self.valid()?;
+        let estimate = valid.estimate()?;
         estimate.check(budget, "output.vtu_subdivisions")?;
-        let d = self.discretise(MapCheck::EveryPoint)?;
-        let points = contact_points(&d.bodies, &d.map, &d.pairs)?;
+        let d = valid.discretise(MapCheck::EveryPoint)?;
+        let points = checked_contact_points(&d.bodies, &d.map, &d.pairs)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
         let warnings = solver::warning::before_solve(&d.bodies, &d.pairs, &points);
         Ok(CheckReport {

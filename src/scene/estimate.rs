@@ -2,6 +2,7 @@
 //! vectors, nothing of the size of the discretisation allocated.
 
 use super::patches::in_body;
+use super::validate::Valid;
 use super::{MasterSpec, RefineSpec, Scene};
 use crate::error::Result;
 use crate::nurbs::{KnotVector, NurbsPatch};
@@ -9,10 +10,17 @@ use crate::resources::{BodySize, Estimate, Factoring, PairSize};
 use crate::solver::Factorisation;
 
 impl Scene {
-    /// Estimates DOFs, non-zeros and peak memory of a run from the scene
-    /// alone, allocating nothing of the size of the discretisation.
+    /// Validates the scene and estimates DOFs, non-zeros and peak memory of
+    /// a run from it alone, allocating nothing of the size of the
+    /// discretisation.
     pub fn estimate(&self) -> Result<Estimate> {
-        self.validate()?;
+        self.valid()?.estimate()
+    }
+}
+
+impl Valid<'_> {
+    /// [`Scene::estimate`] of the validated scene.
+    pub(super) fn estimate(&self) -> Result<Estimate> {
         let per_body = (0..self.bodies.len())
             .map(|i| self.body_sizes(i))
             .collect::<Result<Vec<_>>>()?;
@@ -77,7 +85,9 @@ impl Scene {
         };
         Ok(Estimate::new(sizes, pairs, vtu, factoring))
     }
+}
 
+impl Scene {
     /// The sizes of body `i`'s discretisation (one per patch), from its
     /// knot vectors alone.
     fn body_sizes(&self, i: usize) -> Result<Vec<BodySize>> {

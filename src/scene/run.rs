@@ -49,14 +49,15 @@ impl Scene {
         budget: &Budget,
         mut clock: Stopwatch,
     ) -> Result<RunReport> {
-        self.estimate()?.check(budget, "output.vtu_subdivisions")?;
+        let valid = self.valid()?;
+        valid.estimate()?.check(budget, "output.vtu_subdivisions")?;
         let o = &self.output;
         let set = if o.is_empty() {
             None
         } else {
             Some(OutputSet::begin_expecting(out_dir, &o.file_names())?)
         };
-        let problem = self.assemble(&mut clock)?;
+        let problem = valid.assemble(&mut clock)?;
         let solution = solver::solve(&problem, &self.solver)?;
         let solve = clock.take();
         let factorisation = solution.phases.condensation.min(solve);

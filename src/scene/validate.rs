@@ -9,12 +9,33 @@ use crate::error::{Error, Result};
 use crate::material::{Formulation, Plane};
 use crate::wellposed;
 use std::collections::HashMap;
+use std::ops::Deref;
+
+/// A scene that passed [`Scene::validate`], as only [`Scene::valid`] makes
+/// one: what estimating, building and checking work on, so that each
+/// public entry point validates once and nothing below it again.
+pub(super) struct Valid<'a>(&'a Scene);
+
+impl Deref for Valid<'_> {
+    type Target = Scene;
+
+    fn deref(&self) -> &Scene {
+        self.0
+    }
+}
 
 impl Scene {
     /// Checks every rule a scene must satisfy, naming the key path and value
-    /// of the first violation. [`Scene::from_toml_str`] and [`Scene::build`]
-    /// both call it.
+    /// of the first violation. [`Scene::from_toml_str`] calls it, and so do
+    /// [`Scene::build`], [`Scene::estimate`], [`Scene::check`] and
+    /// [`Scene::run`], once each: a scene's fields are public, and may have
+    /// changed since it was read.
     pub fn validate(&self) -> Result<()> {
+        self.valid().map(|_| ())
+    }
+
+    /// The scene, validated.
+    pub(super) fn valid(&self) -> Result<Valid<'_>> {
         if self.bodies.is_empty() {
             return Err(Error::invalid(
                 "body",
@@ -189,7 +210,7 @@ impl Scene {
                 }
             }
         }
-        Ok(())
+        Ok(Valid(self))
     }
 
     /// Refuses fewer quadrature points than `need`, unless the scene allows
