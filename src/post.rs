@@ -12,8 +12,10 @@ pub mod hertz;
 
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
+use crate::contact::pair::checked_contact_points;
+use crate::contact::params::MAX_GAUSS_POINTS;
 pub use crate::contact::penalty::{stability_of, PenaltyStability};
-use crate::contact::{contact_points, ContactPoint, Integration, Role};
+use crate::contact::{ContactPoint, Integration, Role};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linsolve::mul;
@@ -57,7 +59,7 @@ impl ProfileSample {
 
 /// The Nitsche bracket sampled densely along every slave side.
 ///
-/// The samples are contact points built by [`contact_points`] exactly as the
+/// The samples are contact points built by [`contact_points`](crate::contact::contact_points) exactly as the
 /// solver's (same normal, gap, penalty and σ_n functional); only the rule
 /// differs: Gauss points per slave element, never cut at master knots.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,7 +73,17 @@ pub struct PressureProfile {
 /// The contact points of `problem`'s pairs placed at `per_element` Gauss
 /// points of every slave element, whatever rule the solver used: the
 /// denser sampling that post-processing measures on.
+///
+/// The pairs are the problem's, checked when it was built; only
+/// `per_element` is new here, and checked (1..=[`MAX_GAUSS_POINTS`]).
 pub fn dense_contact_points(problem: &Problem, per_element: usize) -> Result<Vec<ContactPoint>> {
+    if !(1..=MAX_GAUSS_POINTS).contains(&per_element) {
+        return Err(Error::invalid(
+            "per_element",
+            per_element,
+            format!("must lie in 1..={MAX_GAUSS_POINTS}"),
+        ));
+    }
     let pairs: Vec<_> = problem
         .pairs
         .iter()
@@ -82,7 +94,7 @@ pub fn dense_contact_points(problem: &Problem, per_element: usize) -> Result<Vec
             p
         })
         .collect();
-    contact_points(&problem.bodies, &problem.map, &pairs)
+    checked_contact_points(&problem.bodies, &problem.map, &pairs)
 }
 
 impl PressureProfile {

@@ -78,7 +78,7 @@ fn small(scene: &Scene) -> bool {
         let refine_ok = b
             .refine
             .as_ref()
-            .is_none_or(|r| r.elements.iter().all(|&n| n <= 8) && r.degree.is_none_or(|p| p <= 4));
+            .is_none_or(|r| r.elements().iter().all(|&n| n <= 8) && r.degree() <= 4);
         geometry_ok && refine_ok && ok_quad(b.quadrature)
     }) && scene
         .contacts

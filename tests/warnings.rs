@@ -63,13 +63,12 @@ fn disk_on_block(stiffness_ratio: f64) -> Scene {
 /// The block's top as slave and the disk as master.
 fn swapped(mut s: Scene) -> Scene {
     let c = &mut s.contacts[0];
-    let (slave, side) = (c.slave.clone(), c.slave_side);
-    c.slave = c.master.body.take().unwrap();
-    c.slave_side = Some(c.master.side.take().unwrap());
-    c.master = MasterSpec {
-        body: Some(slave),
-        side,
-        ..MasterSpec::default()
+    let MasterSpec::Body { body, side } = c.master.clone() else {
+        panic!("the disk on the block has a body as master");
+    };
+    c.master = MasterSpec::Body {
+        body: std::mem::replace(&mut c.slave, body),
+        side: c.slave_side.replace(side).unwrap(),
     };
     s
 }

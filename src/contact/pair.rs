@@ -98,7 +98,8 @@ fn validate(pair: &ContactPair, ip: usize, bodies: &[Body]) -> Result<()> {
     Ok(())
 }
 
-/// Builds every contact quadrature point of every pair.
+/// Builds every contact quadrature point of every pair, after checking
+/// the pairs (body indices, [`Nitsche::validate`]).
 ///
 /// Points whose projection falls beyond the end of the master are left
 /// out: no master surface faces them. For the unbiased form, each body of
@@ -108,9 +109,22 @@ pub fn contact_points(
     map: &DofMap,
     pairs: &[ContactPair],
 ) -> Result<Vec<ContactPoint>> {
-    let mut out = Vec::new();
     for (ip, pair) in pairs.iter().enumerate() {
         validate(pair, ip, bodies)?;
+    }
+    checked_contact_points(bodies, map, pairs)
+}
+
+/// [`contact_points`] of pairs already checked: built by a validated scene,
+/// or taken from a [`crate::problem::Problem`], whose construction checked
+/// them. A second check would only repeat the first.
+pub(crate) fn checked_contact_points(
+    bodies: &[Body],
+    map: &DofMap,
+    pairs: &[ContactPair],
+) -> Result<Vec<ContactPoint>> {
+    let mut out = Vec::new();
+    for (ip, pair) in pairs.iter().enumerate() {
         match (&pair.master, pair.nitsche.sides) {
             (Master::Body { body, side }, Sides::Unbiased) => {
                 one_side(bodies, map, ip, pair, Role::Slave, 0.5, &mut out)?;

@@ -1,0 +1,143 @@
+//! Bodies, boundaries and contact pairs by name: the lookups validation and
+//! building share, and the edits a program makes to a scene before it
+//! builds it.
+
+use super::{BodySpec, RefineSpec, Scene};
+use crate::contact::Nitsche;
+use crate::error::{Error, Result};
+use crate::nurbs::Side;
+use std::collections::HashMap;
+
+impl Scene {
+    /// The body named `name`, to change it before building.
+    pub fn body_mut(&mut self, name: &str) -> Result<&mut BodySpec> {
+        let known: Vec<String> = self.bodies.iter().map(|b| b.name.clone()).collect();
+        self.bodies
+            .iter_mut()
+            .find(|b| b.name == name)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "body",
+                    name,
+                    format!("no such body (bodies: {})", known.join(", ")),
+                )
+            })
+    }
+
+    /// The Nitsche parameters of every contact pair, to change them before building.
+    pub fn nitsche_mut(&mut self) -> impl Iterator<Item = &mut Nitsche> {
+        self.contacts.iter_mut().map(|c| &mut c.nitsche)
+    }
+
+    /// The scene with body `name` discretised by `refine`.
+    pub fn refined(mut self, name: &str, refine: RefineSpec) -> Result<Self> {
+        self.body_mut(name)?.refine = Some(refine);
+        Ok(self)
+    }
+
+    /// The scene with `set` applied to the Nitsche parameters of every pair.
+    pub fn with_nitsche(mut self, set: impl FnMut(&mut Nitsche)) -> Self {
+        self.nitsche_mut().for_each(set);
+        self
+    }
+
+    /// Index of each body by name.
+    pub(super) fn body_index(&self) -> HashMap<&str, usize> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.name.as_str(), i))
+            .collect()
+    }
+
+    pub(super) fn resolve(
+        &self,
+        names: &HashMap<&str, usize>,
+        field: String,
+        name: &str,
+    ) -> Result<usize> {
+        names.get(name).copied().ok_or_else(|| {
+            let known: Vec<&str> = self.bodies.iter().map(|b| b.name.as_str()).collect();
+            Error::invalid(
+                field,
+                format!("{name:?}"),
+                format!("no body of that name (bodies: {})", known.join(", ")),
+            )
+        })
+    }
+
+    /// The contact pairs of every `[[contact]]`, in order: one for a
+    /// slave side, one per piece of a slave boundary.
+    pub fn pair_ranges(&self) -> Vec<std::ops::Range<usize>> {
+        let mut at = 0;
+        self.contacts
+            .iter()
+            .map(|c| {
+                let n = match (&c.slave_boundary, c.slave.as_str()) {
+                    (Some(name), slave) => self
+                        .bodies
+                        .iter()
+                        .find(|b| b.name == slave)
+                        .and_then(|b| b.geometry.multipatch())
+                        .and_then(|mp| mp.ok())
+                        .and_then(|mp| mp.boundary(name).map(<[_]>::len))
+                        .unwrap_or(1),
+                    (None, _) => 1,
+                };
+                at += n;
+                at - n..at
+            })
+            .collect()
+    }
+
+    /// Refuses a patch side on body `b` when it has several patches.
+    pub(super) fn one_patch(&self, b: usize, field: &str, side: &str) -> Result<()> {
+        match self.bodies[b].geometry.multipatch() {
+            None => Ok(()),
+            Some(mp) => {
+                let names = mp?.boundary_names().join(", ");
+                Err(Error::invalid(
+                    field,
+                    side,
+                    format!(
+                        "body {:?} has several patches: name one of its boundaries ({names}) \
+                         with `boundary` / `slave_boundary`",
+                        self.bodies[b].name
+                    ),
+                ))
+            }
+        }
+    }
+
+    /// The pieces (patch of the body, side) of boundary `name` of body `b`.
+    pub(super) fn boundary_of(
+        &self,
+        b: usize,
+        field: &str,
+        name: &str,
+    ) -> Result<Vec<(usize, Side)>> {
+        let body = &self.bodies[b];
+        let Some(mp) = body.geometry.multipatch() else {
+            return Err(Error::invalid(
+                field,
+                format!("{name:?}"),
+                format!(
+                    "body {:?} is one patch: name a side with `side` / `slave_side`",
+                    body.name
+                ),
+            ));
+        };
+        let mp = mp?;
+        mp.boundary(name).map(<[_]>::to_vec).ok_or_else(|| {
+            Error::invalid(
+                field,
+                format!("{name:?}"),
+                format!(
+                    "body {:?} has the boundaries {}",
+                    body.name,
+                    mp.boundary_names().join(", ")
+                ),
+            )
+        })
+    }
+}
