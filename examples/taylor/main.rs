@@ -11,13 +11,13 @@
 //!
 //! Run it with `cargo run --release --example taylor`.
 
-mod patch;
+use companion::taylor as patch;
 
+use companion::chapter::Chapter;
 use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
 use iga_contact::error::Result;
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::drawing::{
     control_net, element_lines, field_cells, labelled, FieldPoint, Placement,
 };
@@ -93,7 +93,7 @@ fn rule_name(rule: Integration) -> &'static str {
 // ANCHOR: solve
 /// Solves the scene with contact integration `rule` and measures it.
 fn solve_case(rule: Integration) -> Result<Case> {
-    let mut scene = Scene::shipped("taylor.toml")?;
+    let mut scene = companion::shipped("taylor.toml")?;
     for nitsche in scene.nitsche_mut() {
         nitsche.integration = rule;
     }
