@@ -8,10 +8,8 @@
 //!
 //! Run it with `cargo run --release --example penalty`.
 
-use companion::penalty as common;
-
-use common::{hertz, measure};
 use companion::chapter::Chapter;
+use companion::penalty::{hertz, measure};
 use iga_contact::contact::penalty::stability_bound;
 use iga_contact::contact::{ContactPoint, Penalty, Theta};
 use iga_contact::error::Result;

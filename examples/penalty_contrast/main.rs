@@ -8,10 +8,8 @@
 //! Run it with `cargo run --release --example penalty_contrast` (a few
 //! minutes of one core).
 
-use companion::penalty as common;
-
-use common::{hertz, measure, Run};
 use companion::chapter::Chapter;
+use companion::penalty::{hertz, measure, Run};
 use iga_contact::contact::{Modulus, Role, Sides, Theta};
 use iga_contact::error::Result;
 use iga_contact::post::{self, penalty_stability, relative};

@@ -11,9 +11,8 @@
 //!
 //! Run it with `cargo run --release --example taylor`.
 
-use companion::taylor as patch;
-
 use companion::chapter::Chapter;
+use companion::taylor::{consistency, patch_errors, Exact, PatchErrors, SIDE_SAMPLES};
 use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
 use iga_contact::error::Result;
@@ -27,7 +26,6 @@ use iga_contact::report::table::{Column, Format, Table, Unit};
 use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::{solve, Solution};
-use patch::{consistency, patch_errors, Exact, PatchErrors};
 
 // ANCHOR: paper
 /// What the paper reports for its solve of the test: BFGS iterations and
@@ -315,7 +313,7 @@ fn main() -> Result<()> {
         f.number(&format!("{name}_first_residual"), first, Format::Pow10(0))?;
     }
     f.count("gauss_points_checked", segment.errors.gauss_points)?;
-    f.count("side_samples", patch::SIDE_SAMPLES)?;
+    f.count("side_samples", SIDE_SAMPLES)?;
     // the exact state widens the blocks by ε_xx = ν p / E
     let widening = segment.exact.displacement([1.0, 0.0])[0];
     f.number("relative_widening", widening, Format::Percent(0))?;
