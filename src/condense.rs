@@ -594,6 +594,6 @@ mod tests {
         let err = Condensation::new(a.as_ref(), vec![0, 1, last])
             .err()
             .expect("indefinite");
-        assert_eq!(err.kind(), "singular_kernel", "{err}");
+        assert_eq!(err.kind(), crate::error::ErrorKind::SingularKernel, "{err}");
     }
 }

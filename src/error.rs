@@ -4,7 +4,7 @@
 //! input names the field path and the offending value, a solver failure
 //! carries its full iteration history.
 
-use crate::solver::history::History;
+use crate::history::History;
 
 /// Errors raised anywhere in the pipeline geometry → space → assembly →
 /// contact → solver → report.
@@ -62,18 +62,56 @@ impl Error {
         }
     }
 
-    /// A short machine-readable tag, used by the stability atlas.
-    pub fn kind(&self) -> &'static str {
+    /// What kind of failure this is, for a program that acts on it (a
+    /// study that tabulates failures, a test that expects one).
+    pub fn kind(&self) -> ErrorKind {
         match self {
-            Error::InvalidInput { .. } => "invalid_input",
-            Error::Geometry(_) => "geometry",
-            Error::Singular(_) => "singular_kernel",
-            Error::OutOfMemory(_) => "out_of_memory",
-            Error::Floating(_) => "floating_body",
-            Error::NotConverged { .. } => "not_converged",
-            Error::Output { .. } => "output",
-            Error::Io { .. } => "io",
+            Error::InvalidInput { .. } => ErrorKind::InvalidInput,
+            Error::Geometry(_) => ErrorKind::Geometry,
+            Error::Singular(_) => ErrorKind::SingularKernel,
+            Error::OutOfMemory(_) => ErrorKind::OutOfMemory,
+            Error::Floating(_) => ErrorKind::FloatingBody,
+            Error::NotConverged { .. } => ErrorKind::NotConverged,
+            Error::Output { .. } => ErrorKind::Output,
+            Error::Io { .. } => ErrorKind::Io,
         }
+    }
+}
+
+/// The variant of an [`Error`] without its data: comparable, copyable, and
+/// written into tables by its [`tag`](ErrorKind::tag).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ErrorKind {
+    InvalidInput,
+    Geometry,
+    SingularKernel,
+    OutOfMemory,
+    FloatingBody,
+    NotConverged,
+    Output,
+    Io,
+}
+
+impl ErrorKind {
+    /// The snake-case tag of the kind, as the stability atlas's
+    /// `error_kind` column holds it.
+    pub fn tag(self) -> &'static str {
+        match self {
+            ErrorKind::InvalidInput => "invalid_input",
+            ErrorKind::Geometry => "geometry",
+            ErrorKind::SingularKernel => "singular_kernel",
+            ErrorKind::OutOfMemory => "out_of_memory",
+            ErrorKind::FloatingBody => "floating_body",
+            ErrorKind::NotConverged => "not_converged",
+            ErrorKind::Output => "output",
+            ErrorKind::Io => "io",
+        }
+    }
+}
+
+impl std::fmt::Display for ErrorKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.tag())
     }
 }
 

@@ -15,6 +15,7 @@ pub mod contact;
 pub mod dofs;
 pub mod error;
 pub mod geometry;
+pub mod history;
 pub mod interface;
 pub mod linsolve;
 pub mod material;
@@ -32,4 +33,4 @@ pub mod sparse;
 pub mod timing;
 pub mod wellposed;
 
-pub use error::{Error, Result};
+pub use error::{Error, ErrorKind, Result};

@@ -7,7 +7,6 @@ use crate::contact::nitsche::{add_force, add_force_size_at, heaviside, local_mat
 use crate::contact::{contact_points, ContactPair, ContactPoint};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
-use crate::linsolve::mul;
 use crate::wellposed::{free_modes, RigidBasis};
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
@@ -352,69 +351,68 @@ impl Problem {
     /// whose linearisation is the secant kernel with those points active,
     /// so a step with it closes their gap (the floating guard).
     pub fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState) {
-        let full = self.map.expand(u);
-        let ku = mul(&self.k, u);
-        let mut r: Vec<f64> = self.rhs.iter().zip(&ku).map(|(f, k)| f - k).collect();
-        let mut active = 0;
-        let mut g = Vec::new();
-        for (q, cp) in self.points.iter().enumerate() {
-            g.clear();
-            g.resize(cp.dofs.len(), 0.0);
-            let law = match forced.get(q) {
-                Some(true) => Law::Tied,
-                _ => Law::Contact,
-            };
-            if add_force(cp, &full, &mut g, law) <= 0.0 {
-                active += 1;
-            }
-            for (k, &dof) in cp.dofs.iter().enumerate() {
-                if let Some(i) = self.map.free(dof) {
-                    r[i] -= g[k];
-                }
-            }
-        }
-        (r, ContactState { active })
+        let (r, state, _) = self.residual_with_floor(u, forced);
+        (r, state)
     }
 
-    /// The round-off of evaluating R at `u`, as two norms of the
-    /// component-wise sums of the magnitudes of the terms of R, times ε:
-    /// `(typical, cancelling)`. Both count |f| and |K||u|; `typical` counts
-    /// each contact force as computed, |g_c|, and `cancelling` its terms
-    /// before they cancel ([`crate::contact::nitsche::add_force_size_at`]),
-    /// a bound that small penalties or large stresses make far larger.
-    pub fn residual_floor(&self, u: &[f64]) -> (f64, f64) {
+    /// As [`Problem::residual_forced`], with the round-off of evaluating R
+    /// at `u`, from the same pass over K and the contact points: two norms
+    /// of the component-wise sums of the magnitudes of the terms of R,
+    /// times ε, `(typical, cancelling)`. Both count |f| and |K||u|;
+    /// `typical` counts each contact force as computed, |g_c|, and
+    /// `cancelling` its terms before they cancel
+    /// ([`crate::contact::nitsche::add_force_size_at`]), a bound that small
+    /// penalties or large stresses make far larger.
+    pub fn residual_with_floor(
+        &self,
+        u: &[f64],
+        forced: &[bool],
+    ) -> (Vec<f64>, ContactState, (f64, f64)) {
         let full = self.map.expand(u);
+        let mut ku = vec![0.0; self.n()];
         let mut size: Vec<f64> = self.rhs.iter().map(|v| v.abs()).collect();
         let s = self.k.symbolic();
         let (ptr, idx, val) = (s.col_ptr(), s.row_idx(), self.k.val());
         for j in 0..self.n() {
             for k in ptr[j]..ptr[j + 1] {
-                size[idx[k]] += (val[k] * u[j]).abs();
+                let a = val[k] * u[j];
+                ku[idx[k]] += a;
+                size[idx[k]] += a.abs();
             }
         }
+        let mut r: Vec<f64> = self.rhs.iter().zip(&ku).map(|(f, k)| f - k).collect();
         let mut wide = size.clone();
+        let mut active = 0;
         let (mut g, mut g_size) = (Vec::new(), Vec::new());
-        for cp in &self.points {
+        for (q, cp) in self.points.iter().enumerate() {
             g.clear();
             g.resize(cp.dofs.len(), 0.0);
             g_size.clear();
             g_size.resize(cp.dofs.len(), 0.0);
-            let p = add_force(cp, &full, &mut g, Law::Contact);
+            let law = match forced.get(q) {
+                Some(true) => Law::Tied,
+                _ => Law::Contact,
+            };
+            let p = add_force(cp, &full, &mut g, law);
+            if p <= 0.0 {
+                active += 1;
+            }
             let (mut sigma_size, mut jump_size) = (0.0, 0.0);
             for (k, &dof) in cp.dofs.iter().enumerate() {
                 sigma_size += (cp.sn[k] * full[dof]).abs();
                 jump_size += (cp.jn[k] * full[dof]).abs();
             }
-            add_force_size_at(cp, sigma_size, jump_size, p, Law::Contact, &mut g_size);
+            add_force_size_at(cp, sigma_size, jump_size, p, law, &mut g_size);
             for (k, &dof) in cp.dofs.iter().enumerate() {
                 if let Some(i) = self.map.free(dof) {
+                    r[i] -= g[k];
                     size[i] += g[k].abs();
                     wide[i] += g_size[k];
                 }
             }
         }
         let norm = |v: &[f64]| f64::EPSILON * v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        (norm(&size), norm(&wide))
+        (r, ContactState { active }, (norm(&size), norm(&wide)))
     }
 
     /// Rigid-body modes (full-length vectors, one per mode) that the

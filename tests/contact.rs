@@ -124,7 +124,7 @@ fn a_body_pulled_away_from_the_floor_is_reported_as_floating() {
         let err = solve(&p, &opts).expect_err("no equilibrium without contact");
         let msg = err.to_string();
         assert!(msg.contains("floats"), "{kind:?}: {msg}");
-        assert_eq!(err.kind(), "floating_body");
+        assert_eq!(err.kind(), iga_contact::ErrorKind::FloatingBody);
     }
 }
 

@@ -344,7 +344,7 @@ fn the_layer_space_needs_the_factorise_once_kernels() {
         ..SolverOptions::default()
     };
     let err = solve(&p, &opts).expect_err("invalid combination");
-    assert_eq!(err.kind(), "invalid_input");
+    assert_eq!(err.kind(), iga_contact::ErrorKind::InvalidInput);
     assert!(err.to_string().contains("solver.space"), "{err}");
     // with the body space the same kernels work
     let body = SolverOptions {

@@ -12,7 +12,7 @@ use companion::hertz as setup;
 use companion::chapter::Chapter;
 use iga_contact::assembly::{strain_stress, Load};
 use iga_contact::contact::{Integration, Penalty, Theta};
-use iga_contact::error::{Error, Result};
+use iga_contact::error::{Error, ErrorKind, Result};
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::problem::Problem;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
@@ -374,7 +374,7 @@ fn run_case(case: &Case) -> Row {
             if let Error::NotConverged { history, .. } = &e {
                 row.history = history.clone();
             }
-            row.error_kind = e.kind().into();
+            row.error_kind = e.kind().tag().into();
             row.diagnosis = e.to_string();
             return row;
         }
@@ -408,7 +408,7 @@ fn run_case(case: &Case) -> Row {
     };
     match error {
         Err(e) => {
-            row.error_kind = e.kind().into();
+            row.error_kind = e.kind().tag().into();
             row.diagnosis = e.to_string();
         }
         Ok(_) if matches!(case.metric, Metric::NoContact) && !active.is_empty() => {
@@ -623,7 +623,10 @@ fn main() -> Result<()> {
     f.count("no_contact", count(&|r| r.status == "no_contact"))?;
     f.count("restarted", count(&|r| r.restarted()))?;
     f.count("warned_below_bound", count(&|r| r.below > 0))?;
-    f.count("singular", count(&|r| r.error_kind == "singular_kernel"))?;
+    f.count(
+        "singular",
+        count(&|r| r.error_kind == ErrorKind::SingularKernel.tag()),
+    )?;
     f.number("tolerance", PENALTY_TOLERANCE, Format::Percent(0))?;
     f.number("sharp_safety", SHARP_SAFETY, Format::Plain)?;
     for r in &rows {

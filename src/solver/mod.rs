@@ -28,7 +28,7 @@ mod diagnosis;
 mod driver;
 mod factorise;
 pub(crate) mod guard;
-pub mod history;
+pub use crate::history;
 pub mod kernel;
 mod line_search;
 pub mod newton;

@@ -99,8 +99,7 @@ impl<'p> System<'p> for BodySystem<'p> {
     }
 
     fn residual_forced(&self, u: &[f64], forced: &[bool]) -> (Vec<f64>, ContactState, Floor) {
-        let (r, state) = self.problem.residual_forced(u, forced);
-        let (typical, cancelling) = self.problem.residual_floor(u);
+        let (r, state, (typical, cancelling)) = self.problem.residual_with_floor(u, forced);
         (
             r,
             state,

@@ -31,7 +31,7 @@ pub fn measure(problem: &Problem, options: &SolverOptions) -> Result<Run> {
                 solution,
             }))
         }
-        Err(e) => Ok(Err(e.kind())),
+        Err(e) => Ok(Err(e.kind().tag())),
     }
 }
 

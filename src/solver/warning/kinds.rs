@@ -1,20 +1,7 @@
-//! What a converged solve reports about its answer ([`Warning`]): it
-//! solves the discrete equations, but may not be the contact solution the
-//! user wants.
-//!
-//! Each warning names one cause, the measurement that shows it, and one
-//! remedy; the remedy is chosen so that, followed, the warning goes away and
-//! the answer is right to the method's accuracy (`tests/warnings.rs` checks
-//! each). The thresholds are measured on the shipped Hertz scenes; the
-//! book's scene chapter lists them with their measurements.
+//! The warnings a solve can report, their thresholds, and the words each
+//! prints: the cause, the measurement and the one remedy.
 
-use crate::contact::penalty::{first_touch, stability_of, PenaltyStability};
-use crate::contact::projection::closest_point;
-use crate::contact::{ContactPair, ContactPoint, Master, Modulus, Penalty, Role};
-use crate::dofs::Body;
-use crate::material::{Formulation, Plane};
-use crate::nurbs::Side;
-use crate::problem::Problem;
+use crate::material::Formulation;
 
 /// The fewest active points that count as resolving a contact zone.
 pub const RESOLVED: usize = 3;
@@ -215,7 +202,7 @@ fn remedy_words(pair: usize, r: PenaltyRemedy) -> String {
 }
 
 /// `x` to two significant digits: advice a user types.
-fn round2(x: f64) -> f64 {
+pub(super) fn round2(x: f64) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return x;
     }
@@ -331,7 +318,7 @@ impl std::fmt::Display for Warning {
                 singular,
             } => write!(
                 f,
-                "contact[{pair}]: the contact zone reaches the {} of the slave side {side} of {slave:?} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: extend the slave side beyond the contact zone",
+                "contact[{pair}]: the contact zone reaches the {} of the slave side {side} of {slave:?} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: {}",
                 match end {
                     SideEnd::Start => "start",
                     SideEnd::End => "end",
@@ -342,6 +329,14 @@ impl std::fmt::Display for Warning {
                     ", where the map is singular (det J = 0) and the pressure is not a contact pressure"
                 } else {
                     ""
+                },
+                // a side that ends at a collapsed corner cannot be extended
+                // on its own patch: only a body of several patches has a
+                // boundary that goes on past it
+                if *singular {
+                    "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml)"
+                } else {
+                    "extend the slave side beyond the contact zone"
                 }
             ),
             Warning::UnresolvedContact {
@@ -354,348 +349,4 @@ impl std::fmt::Display for Warning {
             ),
         }
     }
-}
-
-/// The penalty warnings of every pair: below the bound, or far above it,
-/// counted at the points where `active` holds. One count
-/// ([`stability_of`]) feeds both.
-fn penalty_warnings(
-    bodies: &[Body],
-    pairs: &[ContactPair],
-    points: &[ContactPoint],
-    counted: Counted,
-    active: impl Fn(usize, &ContactPoint) -> bool,
-) -> Vec<Warning> {
-    let stability = stability_of(points, pairs.len(), active, OVER_PENALTY);
-    let mut out = Vec::new();
-    for (k, s) in stability.iter().enumerate() {
-        let pair = &pairs[k];
-        if s.active_below + s.inactive_below > 0 {
-            out.push(Warning::PenaltyBelowBound {
-                pair: k,
-                below: s.active_below,
-                active: s.active,
-                inactive_below: s.inactive_below,
-                min_ratio: s.min_ratio(),
-                counted,
-                remedy: below_remedy(pair, s),
-            });
-        } else if let (true, Some(min_ratio)) = (
-            pair.nitsche.theta.value() < 0.0,
-            s.min_active_scale.filter(|&r| r < LOOSE_PENALTY),
-        ) {
-            out.push(Warning::PenaltyLoose {
-                pair: k,
-                active: s.active,
-                min_ratio,
-                counted,
-                remedy: scaled(pair, s, PENALTY_TARGET / min_ratio),
-            });
-        } else if let (true, Some(max_ratio)) = (s.active_over > 0, s.max_active_scale) {
-            out.push(Warning::PenaltyFarAboveBound {
-                pair: k,
-                over: s.active_over,
-                active: s.active,
-                max_ratio,
-                counted,
-                remedy: over_remedy(bodies, pair, s, max_ratio),
-            });
-        }
-    }
-    out
-}
-
-/// Scaling the pair's penalty by `scale`, if that keeps every active point
-/// between its bound and [`OVER_PENALTY`] times the θ = 0 bound: the
-/// factor; otherwise the sharp penalty, which sets each element's γ from
-/// its own bound.
-fn scaled(pair: &ContactPair, s: &PenaltyStability, scale: f64) -> PenaltyRemedy {
-    let low_ok = s.min_ratio().is_none_or(|m| m * scale >= 1.0);
-    let high_ok = s.max_active_scale.is_none_or(|m| m * scale <= OVER_PENALTY);
-    match pair.nitsche.penalty {
-        Penalty::Empirical if low_ok && high_ok => {
-            PenaltyRemedy::Factor(round2(pair.nitsche.penalty_factor * scale))
-        }
-        Penalty::Empirical => PenaltyRemedy::Sharp(PENALTY_TARGET),
-        Penalty::Sharp => PenaltyRemedy::Factor(PENALTY_TARGET),
-    }
-}
-
-/// Below the bound: the smallest active point lifted to [`PENALTY_TARGET`]
-/// times its bound.
-fn below_remedy(pair: &ContactPair, s: &PenaltyStability) -> PenaltyRemedy {
-    let ratio = s.min_ratio().unwrap_or(1.0);
-    scaled(pair, s, PENALTY_TARGET / ratio)
-}
-
-/// Far above: the stiffer master's modulus, if that is what raises γ;
-/// otherwise the largest active point brought to [`PENALTY_TARGET`] times
-/// its own θ's bound (θ = 1: 4 times the θ = 0 one; θ = −1: the θ = 0 one).
-fn over_remedy(
-    bodies: &[Body],
-    pair: &ContactPair,
-    s: &PenaltyStability,
-    max_ratio: f64,
-) -> PenaltyRemedy {
-    if let (Modulus::Max, Master::Body { body, .. }) = (pair.nitsche.modulus, &pair.master) {
-        let (es, em) = (
-            bodies[pair.slave].material.young,
-            bodies[*body].material.young,
-        );
-        if em > es && max_ratio * es / em <= OVER_PENALTY {
-            return PenaltyRemedy::SlaveModulus;
-        }
-    }
-    let own = if pair.nitsche.theta.value() > 0.0 {
-        4.0
-    } else {
-        1.0
-    };
-    scaled(pair, s, PENALTY_TARGET * own / max_ratio)
-}
-
-/// The warnings that do not depend on the solution: the choice of slave,
-/// and locking of nearly incompressible bodies.
-pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
-    let mut out = Vec::new();
-    for (k, pair) in pairs.iter().enumerate() {
-        if let Master::Body { body, .. } = pair.master {
-            let (s, m) = (&bodies[pair.slave], &bodies[body]);
-            let contrast = s.material.young / m.material.young;
-            if contrast > STIFFER_SLAVE {
-                out.push(Warning::StifferSlave {
-                    pair: k,
-                    slave: s.name.clone(),
-                    master: m.name.clone(),
-                    contrast,
-                });
-            }
-        }
-    }
-    for b in bodies {
-        if let Some(w) = locking(b) {
-            out.push(w);
-        }
-    }
-    out
-}
-
-/// [`Warning::NearlyIncompressible`] for body `b`, if its indicator is
-/// above [`LOCKING`].
-pub fn locking(b: &Body) -> Option<Warning> {
-    let nu = b.material.poisson;
-    // the mixed formulation's continuous pressure does not lock (chapter
-    // "Near incompressibility")
-    if b.material.plane != Plane::Strain
-        || nu <= LOCKING_POISSON
-        || b.formulation == Formulation::Mixed
-    {
-        return None;
-    }
-    let lambda_over_mu = 2.0 * nu / (1.0 - 2.0 * nu);
-    let spans = |d: usize| b.space.patch.knots[d].breaks().len().saturating_sub(1);
-    let fewest = spans(0).min(spans(1)).max(1) as f64;
-    let indicator = lambda_over_mu / fewest.powi(3);
-    (indicator > LOCKING).then(|| Warning::NearlyIncompressible {
-        body: b.name.clone(),
-        formulation: b.formulation,
-        poisson: nu,
-        indicator,
-        elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
-    })
-}
-
-/// The warnings of a problem before it is solved: [`setup_warnings`], and
-/// the penalty counted where the bodies first touch
-/// ([`crate::contact::penalty::first_touch`]).
-pub fn before_solve(
-    bodies: &[Body],
-    pairs: &[ContactPair],
-    points: &[ContactPoint],
-) -> Vec<Warning> {
-    let touch = first_touch(points, pairs.len());
-    let mut out = setup_warnings(bodies, pairs);
-    out.extend(penalty_warnings(
-        bodies,
-        pairs,
-        points,
-        Counted::FirstTouch,
-        |q, _| touch[q],
-    ));
-    out
-}
-
-/// The pairs whose contact zone, given the bracket `p[q]` of every contact
-/// point of `problem` (P ≤ 0: active), reaches an end of its slave side
-/// where the body's boundary goes on smoothly (the end is not a corner of
-/// the body, nor a symmetry line, which meets the side at a right angle)
-/// and the master goes on too: the contact surface stops there though the
-/// bodies would touch beyond it. A failed solve can call this too: a zone cut off
-/// there is a geometric cause, not a penalty one.
-pub fn zones_at_side_end(problem: &Problem, p: &[f64]) -> Vec<Warning> {
-    at_side_end(&problem.bodies, &problem.pairs, &problem.points, p)
-}
-
-/// The largest angle between the slave side's direction at an end and the
-/// next side's that counts as a smooth continuation (a degenerate
-/// (det J = 0) corner such as the nine-point disk's has angle 0).
-const SMOOTH: f64 = 30.0;
-
-/// Whether the boundary of `body` goes on past `end` of `side` within
-/// [`SMOOTH`] degrees of the side's own direction.
-fn continues_smoothly(body: &Body, side: Side, end: SideEnd) -> bool {
-    let patch = &body.space.patch;
-    let curve = patch.side_curve(side);
-    let (lo, hi) = (curve.knots.first(), curve.knots.last());
-    let d = 1e-6 * (hi - lo);
-    let (t, inward) = match end {
-        SideEnd::Start => (lo, lo + d),
-        SideEnd::End => (hi, hi - d),
-    };
-    let corner = curve.point(t);
-    let inner = curve.point(inward);
-    let out = [corner[0] - inner[0], corner[1] - inner[1]];
-    // the side that meets this one at the corner
-    let next = match (side, end) {
-        (Side::EtaMin | Side::EtaMax, SideEnd::Start) => Side::XiMin,
-        (Side::EtaMin | Side::EtaMax, SideEnd::End) => Side::XiMax,
-        (Side::XiMin | Side::XiMax, SideEnd::Start) => Side::EtaMin,
-        (Side::XiMin | Side::XiMax, SideEnd::End) => Side::EtaMax,
-    };
-    let other = patch.side_curve(next);
-    let (a, b) = (other.knots.first(), other.knots.last());
-    let e = 1e-6 * (b - a);
-    let at_first = {
-        let p = other.point(a);
-        (p[0] - corner[0]).hypot(p[1] - corner[1])
-    } <= {
-        let p = other.point(b);
-        (p[0] - corner[0]).hypot(p[1] - corner[1])
-    };
-    let beyond = other.point(if at_first { a + e } else { b - e });
-    let from = other.point(if at_first { a } else { b });
-    let on = [beyond[0] - from[0], beyond[1] - from[1]];
-    let (n1, n2) = (out[0].hypot(out[1]), on[0].hypot(on[1]));
-    if !(n1 > 0.0 && n2 > 0.0) {
-        return false;
-    }
-    let cos = (out[0] * on[0] + out[1] * on[1]) / (n1 * n2);
-    cos >= SMOOTH.to_radians().cos()
-}
-
-fn at_side_end(
-    bodies: &[Body],
-    pairs: &[ContactPair],
-    points: &[ContactPoint],
-    p: &[f64],
-) -> Vec<Warning> {
-    let mut out = Vec::new();
-    for (k, pair) in pairs.iter().enumerate() {
-        let slave = &bodies[pair.slave];
-        let curve = slave.space.patch.side_curve(pair.slave_side);
-        let own: Vec<usize> = (0..points.len())
-            .filter(|&q| points[q].pair == k && points[q].role == Role::Slave)
-            .collect();
-        let first = own
-            .iter()
-            .copied()
-            .min_by(|&a, &b| points[a].t.total_cmp(&points[b].t));
-        let last = own
-            .iter()
-            .copied()
-            .max_by(|&a, &b| points[a].t.total_cmp(&points[b].t));
-        let master_curve = match &pair.master {
-            Master::Rigid(c) => c.clone(),
-            Master::Body { body, side } => bodies[*body].space.patch.side_curve(*side),
-        };
-        let ends = [
-            (SideEnd::Start, first, curve.knots.first()),
-            (SideEnd::End, last, curve.knots.last()),
-        ];
-        for (end, q, t) in ends {
-            let Some(q) = q else { continue };
-            if p[q] > 0.0 {
-                continue;
-            }
-            if !continues_smoothly(slave, pair.slave_side, end) {
-                continue; // a corner of the body, or a symmetry line
-            }
-            let at = curve.point(t);
-            let Ok(pr) = closest_point(&master_curve, at) else {
-                continue;
-            };
-            let (lo, hi) = (master_curve.knots.first(), master_curve.knots.last());
-            let tol = 1e-6 * (hi - lo);
-            if !pr.orthogonal || pr.t <= lo + tol || pr.t >= hi - tol {
-                continue; // the master ends there too
-            }
-            out.push(Warning::ZoneAtSideEnd {
-                pair: k,
-                slave: slave.name.clone(),
-                side: pair.slave_side.name(),
-                end,
-                at,
-                singular: !points[q].regular,
-            });
-        }
-    }
-    out
-}
-
-/// The warnings of a converged solution `full` (all DOFs).
-pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
-    let p: Vec<f64> = problem.points.iter().map(|cp| cp.p(full)).collect();
-    let mut out = setup_warnings(&problem.bodies, &problem.pairs);
-    out.extend(penalty_warnings(
-        &problem.bodies,
-        &problem.pairs,
-        &problem.points,
-        Counted::Solution,
-        |q, _| p[q] <= 0.0,
-    ));
-    // below the bound the active set itself is in doubt: that one cause is
-    // reported, not the extent of the zone it produces
-    let doubtful: Vec<usize> = out
-        .iter()
-        .filter_map(|w| match w {
-            Warning::PenaltyBelowBound { pair, .. } => Some(*pair),
-            _ => None,
-        })
-        .collect();
-    out.extend(
-        zones_at_side_end(problem, &p).into_iter().filter(
-            |w| !matches!(w, Warning::ZoneAtSideEnd { pair, .. } if doubtful.contains(pair)),
-        ),
-    );
-    for (k, pair) in problem.pairs.iter().enumerate() {
-        let active: Vec<&ContactPoint> = (0..p.len())
-            .filter(|&q| problem.points[q].pair == k && p[q] <= 0.0)
-            .map(|q| &problem.points[q])
-            .collect();
-        if active.is_empty() {
-            continue;
-        }
-        // the slave elements the zone touches (points of the slave side;
-        // the mirrored half of the unbiased form lies on the master)
-        let sides = problem.bodies[pair.slave].space.boundary(pair.slave_side);
-        let mut touched: Vec<usize> = active
-            .iter()
-            .filter(|cp| cp.role == Role::Slave)
-            .filter_map(|cp| {
-                sides
-                    .iter()
-                    .position(|be| be.range[0] <= cp.t && cp.t <= be.range[1])
-            })
-            .collect();
-        touched.sort_unstable();
-        touched.dedup();
-        if active.len() < RESOLVED || touched.len() == 1 {
-            out.push(Warning::UnresolvedContact {
-                pair: k,
-                active: active.len(),
-                elements: touched.len(),
-            });
-        }
-    }
-    out
 }

@@ -1,4 +1,7 @@
-//! The iteration record kept by every nonlinear solver.
+//! The iteration record kept by every nonlinear solver: plain data, below
+//! every module, so that an error can carry the history of the solve it ends
+//! ([`crate::Error::NotConverged`]) without the error type depending on the
+//! solver.
 
 use std::fmt;
 
@@ -22,7 +25,7 @@ pub enum Event {
     KernelLuFallback,
     /// The damped iteration from the first start stalled, so the solve
     /// started again from u = 0 with the tied kernel (17)
-    /// ([`super::OnStall::RestartTied`]).
+    /// ([`crate::solver::OnStall::RestartTied`]).
     Restart,
 }
 

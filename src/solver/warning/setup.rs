@@ -1,0 +1,80 @@
+//! The warnings known before the solve: the choice of slave and modulus, near
+//! incompressibility, and the penalty at the points that touch first.
+
+use super::kinds::{Counted, Warning, LOCKING, LOCKING_POISSON, STIFFER_SLAVE};
+use super::penalty::penalty_warnings;
+use crate::contact::penalty::first_touch;
+use crate::contact::{ContactPair, ContactPoint, Master};
+use crate::dofs::Body;
+use crate::material::{Formulation, Plane};
+
+/// The warnings that do not depend on the solution: the choice of slave,
+/// and locking of nearly incompressible bodies.
+pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
+    let mut out = Vec::new();
+    for (k, pair) in pairs.iter().enumerate() {
+        if let Master::Body { body, .. } = pair.master {
+            let (s, m) = (&bodies[pair.slave], &bodies[body]);
+            let contrast = s.material.young / m.material.young;
+            if contrast > STIFFER_SLAVE {
+                out.push(Warning::StifferSlave {
+                    pair: k,
+                    slave: s.name.clone(),
+                    master: m.name.clone(),
+                    contrast,
+                });
+            }
+        }
+    }
+    for b in bodies {
+        if let Some(w) = locking(b) {
+            out.push(w);
+        }
+    }
+    out
+}
+
+/// [`Warning::NearlyIncompressible`] for body `b`, if its indicator is
+/// above [`LOCKING`].
+pub fn locking(b: &Body) -> Option<Warning> {
+    let nu = b.material.poisson;
+    // the mixed formulation's continuous pressure does not lock (chapter
+    // "Near incompressibility")
+    if b.material.plane != Plane::Strain
+        || nu <= LOCKING_POISSON
+        || b.formulation == Formulation::Mixed
+    {
+        return None;
+    }
+    let lambda_over_mu = 2.0 * nu / (1.0 - 2.0 * nu);
+    let spans = |d: usize| b.space.patch.knots[d].breaks().len().saturating_sub(1);
+    let fewest = spans(0).min(spans(1)).max(1) as f64;
+    let indicator = lambda_over_mu / fewest.powi(3);
+    (indicator > LOCKING).then(|| Warning::NearlyIncompressible {
+        body: b.name.clone(),
+        formulation: b.formulation,
+        poisson: nu,
+        indicator,
+        elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
+    })
+}
+
+/// The warnings of a problem before it is solved: [`setup_warnings`], and
+/// the penalty counted where the bodies first touch
+/// ([`crate::contact::penalty::first_touch`]).
+pub fn before_solve(
+    bodies: &[Body],
+    pairs: &[ContactPair],
+    points: &[ContactPoint],
+) -> Vec<Warning> {
+    let touch = first_touch(points, pairs.len());
+    let mut out = setup_warnings(bodies, pairs);
+    out.extend(penalty_warnings(
+        bodies,
+        pairs,
+        points,
+        Counted::FirstTouch,
+        |q, _| touch[q],
+    ));
+    out
+}
