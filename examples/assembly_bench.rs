@@ -15,8 +15,9 @@
 //! `cargo run --release --example assembly_bench -- assembly [reps] n1 n2 ...`
 //! times the stiffness assembly alone, `reps` times per mesh (default 7),
 //! and prints the median with the fastest and slowest run: the figures of
-//! src/allocator.rs. Build it with `--no-default-features` for the system
-//! allocator. On a shared machine the spread between runs is wide; compare
+//! the allocators' doc comments (book/companion/src/allocator.rs, and
+//! `allocator` in src/main.rs). Build it with `--no-default-features` for
+//! the system allocator. On a shared machine the spread between runs is wide; compare
 //! medians taken in the same session.
 
 use iga_contact::assembly;

@@ -16,13 +16,13 @@
 //! cargo run --release --example formulation
 //! ```
 
+use companion::chapter::Chapter;
+use companion::figures::{basis_figure, contact_sketch, control_net_figure};
 use iga_contact::contact::{contact_points, ContactPair, Integration, Master};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry;
 use iga_contact::nurbs::{KnotVector, NurbsCurve, Side};
-use iga_contact::report::chapter::Chapter;
-use iga_contact::report::figures::{basis_figure, contact_sketch, control_net_figure};
-use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
+use iga_contact::scene::{GeometrySpec, RefineSpec};
 use iga_contact::space::Space;
 use std::process::ExitCode;
 
@@ -58,7 +58,7 @@ fn run() -> iga_contact::Result<()> {
         Some(&weights),
     )?;
 
-    let scene = Scene::shipped("hertz.toml")?;
+    let scene = companion::shipped("hertz.toml")?;
     let GeometrySpec::HalfDisk { center, radius: r } = scene.bodies[0].geometry else {
         unreachable!("the Hertz scene is a half disk")
     };

@@ -31,12 +31,12 @@
 use iga_contact::contact::nitsche::heaviside;
 use iga_contact::error::{Error, Result};
 use iga_contact::problem::Problem;
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::trace::{DenseLu, TraceProblem};
 use iga_contact::solver::{solve, Growth, SolverKind, SolverOptions};
 
 fn disk_on_block(n: usize, factor: f64) -> Result<Problem> {
-    Scene::shipped("disk_on_block.toml")?
+    companion::shipped("disk_on_block.toml")?
         .refined("disk", RefineSpec::iga(2, [n, n]))?
         .refined("block", RefineSpec::iga(2, [2 * n, n]))?
         .with_nitsche(|x| x.penalty_factor = factor)
@@ -44,7 +44,7 @@ fn disk_on_block(n: usize, factor: f64) -> Result<Problem> {
 }
 
 fn hertz(p: usize, n: usize) -> Result<Problem> {
-    Scene::shipped("hertz.toml")?
+    companion::shipped("hertz.toml")?
         .refined("disk", RefineSpec::iga(p, [n, n]))?
         .build()
 }

@@ -9,14 +9,12 @@
 //! would pass [`LIMIT`], one run at a time.
 //!
 //! Output: `book/src/generated/memory_table/`. A heavy program (minutes,
-//! up to about 15 GB): `iga-contact reproduce --only memory_table`.
+//! up to about 15 GB): `reproduce --only memory_table`.
 
-#[path = "reliability/harness.rs"]
-#[allow(dead_code)]
-mod harness;
+use companion::harness;
 
+use companion::chapter::Chapter;
 use harness::{body_scene, launch, mesh, refine, Launch, SHAPES};
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::resources::human_bytes;
 use iga_contact::scene::Scene;

@@ -44,12 +44,13 @@
 //! 2:64 2:256 2:512 3:256 4:256 2:1024; builds on `cargo build --release`
 //! for the binary; tens of minutes, about 15 GB at 1024²).
 
+use companion::chapter::Chapter;
+use companion::timing::median_time;
 use iga_contact::post;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{RefineSpec, Scene};
 use iga_contact::solver::{solve, SolverOptions};
-use iga_contact::timing::{median_time, PhaseTimes};
+use iga_contact::timing::PhaseTimes;
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};
 use std::time::Instant;
@@ -85,7 +86,7 @@ fn peak_gb() -> f64 {
 
 extern "C" {
     /// mimalloc's own: frees the pages it keeps for reuse back to the
-    /// system (the crate's allocator is mimalloc, linked statically).
+    /// system (the chapter programs' allocator is mimalloc, linked statically).
     fn mi_collect(force: bool);
 }
 
@@ -120,7 +121,7 @@ fn cholesky_repeats(n: usize) -> usize {
 }
 
 fn scene(p: usize, n: usize) -> iga_contact::Result<Scene> {
-    Scene::shipped("hertz.toml")?.refined("disk", RefineSpec::iga(p, [n, n]))
+    companion::shipped("hertz.toml")?.refined("disk", RefineSpec::iga(p, [n, n]))
 }
 
 /// Processor time (user and system, all threads) of a `getrusage` result.
@@ -250,7 +251,7 @@ fn case(p: usize, n: usize) -> Result<(), String> {
 /// The scene file the command line runs: `hertz.toml` refined to p, N²,
 /// with the default solver and only the summary as output.
 fn cli_scene(p: usize, n: usize) -> Result<String, String> {
-    let path = iga_contact::scene::shipped_path("hertz.toml");
+    let path = companion::shipped_path("hertz.toml");
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut doc: toml::Table = toml::from_str(&text).map_err(|e| e.to_string())?;
     doc.insert(
@@ -368,7 +369,7 @@ const FALLBACK_MAX_MEMORY: &str = "256G";
 /// The median (by wall time) of `repeats(n)` command-line runs, with the
 /// default memory budget, or [`FALLBACK_MAX_MEMORY`] where it refuses.
 fn cli(p: usize, n: usize) -> Result<CliRun, String> {
-    let bin = iga_contact::report::chapter::cli_binary().map_err(|e| e.to_string())?;
+    let bin = companion::chapter::cli_binary().map_err(|e| e.to_string())?;
     let dir = std::env::temp_dir().join(format!("solver_scaling_cli_{}", std::process::id()));
     let mut runs = Vec::new();
     let mut max_memory = None;
@@ -689,8 +690,7 @@ fn main() -> ExitCode {
         }
     }
     let written = (|| -> iga_contact::Result<()> {
-        let mut chapter =
-            Chapter::at(iga_contact::report::chapter::generated_root().join("solver_scaling"))?;
+        let mut chapter = Chapter::at(companion::chapter::generated_root().join("solver_scaling"))?;
         let [scaling, phases, cli] = tables(&rows)?;
         print!(
             "{}\n{}\n{}",
@@ -707,7 +707,7 @@ fn main() -> ExitCode {
         }
         let facts = chapter.facts();
         // the chapter states when and on what the times were taken
-        iga_contact::timing::Machine::here().record(facts, "machine_")?;
+        companion::timing::Machine::here().record(facts, "machine_")?;
         facts.number("parts_within", PARTS_WITHIN, Format::Percent(0))?;
         facts.count("parts_checked_from", PARTS_CHECKED_FROM)?;
         for (p, n, why) in &not_run {

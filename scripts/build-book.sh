@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Build the book with its API pages:
-#   1. rustdoc of the library (cargo doc --no-deps --release) into target/doc;
+#   1. rustdoc of the workspace's default members, the library iga_contact and
+#      the book's crate companion (cargo doc --no-deps --release), into target/doc;
 #   2. mdbook build book: the preprocessor (book/tools/) renders the maths and
 #      resolves the chapters' api: links against target/doc, failing on an
 #      unknown name;

@@ -47,7 +47,8 @@ LAYERS = [
     ["post"],
     ["report", "timing", "resources"],
     ["scene"],
-    ["book", "allocator"],
+    # The binary. (The book's machinery and the chapter programs' allocator
+    # are not the library's: they live in book/companion, outside src/.)
     ["main"],
 ]
 RANK = {m: i for i, layer in enumerate(LAYERS) for m in layer}

@@ -10,8 +10,8 @@ bash scripts/install-tools.sh
 
 # Every chapter program (examples/), each regenerating its chapter's folder
 # book/src/generated/<chapter>/ as one set of files.
-echo "==> cargo run --release --bin iga-contact -- reproduce"
-cargo run --release --bin iga-contact -- reproduce
+echo "==> cargo run --release --bin reproduce"
+cargo run --release --bin reproduce
 
 # rustdoc, then the book, with the API pages copied into it.
 bash scripts/build-book.sh

@@ -3,12 +3,13 @@
 //!
 //! Data flows one way: [`nurbs`]/[`geometry`] → [`space`] → [`assembly`] →
 //! [`contact`] → [`solver`] → [`post`] → [`report`].
+//!
+//! The library holds no machinery of the book that documents it: it picks
+//! no global allocator (the `iga-contact` binary does), reads no file of the
+//! book, and the chapter programs' registry, outputs and facts live in the
+//! book's own crate, `book/companion`.
 
-#[cfg(feature = "allocator")]
-pub mod allocator;
 pub mod assembly;
-#[doc(hidden)]
-pub mod book;
 pub mod condense;
 pub mod contact;
 pub mod dofs;

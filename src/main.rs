@@ -1,10 +1,11 @@
-//! `iga-contact`: run scene files, check them, and reproduce the book.
+//! `iga-contact`: run scene files and check them. (The book's chapter
+//! programs are run by the companion's `reproduce`, not by this binary.)
 //!
 //! Exit codes: 0 success, 1 a failure while computing or writing (solver
 //! not converged, singular kernel, i/o, out of memory, ...), 2 invalid
 //! input (a scene that does not parse or validate, is ill-posed or too
 //! large for the memory budget, an output directory that cannot take the
-//! outputs, an unknown study, bad command-line usage), 130 / 143 interrupted
+//! outputs, bad command-line usage), 130 / 143 interrupted
 //! by SIGINT / SIGTERM (no output written). Every error is one line on
 //! stderr starting with `error:`, command-line usage included. A run or check whose answer may be
 //! doubtful (a penalty outside its stable range, the stiffer body as slave,
@@ -12,8 +13,7 @@
 //! succeeds, with one `warning:` line on stderr per cause.
 
 use clap::{Parser, Subcommand};
-use iga_contact::report::atomic::{self, OutputSet};
-use iga_contact::report::chapter::{generated_root, Cost, PROGRAMS};
+use iga_contact::report::atomic;
 use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::Scene;
 use iga_contact::solver::Warning;
@@ -21,7 +21,6 @@ use iga_contact::timing::Stopwatch;
 use iga_contact::Error;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// Isogeometric frictionless contact with Nitsche's method and BFGS
 /// (a companion to Hu 2021).
@@ -55,18 +54,6 @@ enum Command {
         /// Report a scene whose estimated peak memory exceeds this as too large.
         #[arg(long, value_name = "SIZE")]
         max_memory: Option<String>,
-    },
-    /// Regenerate the book's tables and figures: run every chapter program
-    /// (`cargo run --release --example NAME` in this source tree).
-    Reproduce {
-        /// Run only the chapter program of this name.
-        #[arg(long)]
-        only: Option<String>,
-        /// Run the heavy programs too (getfem_peer, solver_scaling,
-        /// penalty_contrast, reliability, answers, memory_table: many minutes
-        /// and gigabytes).
-        #[arg(long)]
-        all: bool,
     },
 }
 
@@ -167,92 +154,6 @@ fn warn(scene_path: &Path, warnings: &[Warning]) {
     }
 }
 
-fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {
-    let mut all: Vec<_> = PROGRAMS.to_vec();
-    if let Some(name) = &only {
-        let names: Vec<&str> = all.iter().map(|p| p.example).collect();
-        if !names.contains(&name.as_str()) {
-            let e = Error::invalid(
-                "--only",
-                name,
-                format!("no such chapter program (programs: {})", names.join(", ")),
-            );
-            return Err(Failure::from_error(None, &e));
-        }
-        all.retain(|p| p.example == name);
-    } else if !heavy {
-        all.retain(|p| p.cost == Cost::Quick);
-    }
-    // Fail fast: every chapter folder must be able to take a new set of
-    // outputs before any program runs (each program then replaces its folder
-    // as one set, or leaves it as it was).
-    for program in &all {
-        OutputSet::begin(generated_root().join(program.chapter))
-            .map_err(|e| Failure::from_error(None, &e))?
-            .abort();
-    }
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    // One build of every example first, so that the progress below is the
-    // programs' own running time.
-    let status = std::process::Command::new(&cargo)
-        .args(["build", "--release", "--examples", "--manifest-path"])
-        .arg(&manifest)
-        .status();
-    if !status.as_ref().is_ok_and(|s| s.success()) {
-        return Err(Failure {
-            message: format!("building the chapter programs failed ({status:?})"),
-            code: 1,
-        });
-    }
-    let n = all.len();
-    let start = Instant::now();
-    let mut failed = Vec::new();
-    for (k, program) in all.iter().enumerate() {
-        eprintln!(
-            "[{}/{n}] {} → book/src/generated/{}/",
-            k + 1,
-            program.example,
-            program.chapter
-        );
-        let t = Instant::now();
-        let status = std::process::Command::new(&cargo)
-            .args(["run", "--quiet", "--release", "--manifest-path"])
-            .arg(&manifest)
-            .args(["--example", program.example])
-            .status();
-        match status {
-            Ok(s) if s.success() => {
-                eprintln!("      done in {:.1} s", t.elapsed().as_secs_f64())
-            }
-            other => {
-                eprintln!(
-                    "      FAILED after {:.1} s ({other:?})",
-                    t.elapsed().as_secs_f64()
-                );
-                failed.push(program.example);
-            }
-        }
-    }
-    let total = start.elapsed().as_secs_f64();
-    eprintln!(
-        "reproduced {} of {n} chapters in {total:.1} s",
-        n - failed.len()
-    );
-    if failed.is_empty() {
-        Ok(())
-    } else {
-        Err(Failure {
-            message: format!(
-                "{} of {n} chapter programs failed: {}",
-                failed.len(),
-                failed.join(", ")
-            ),
-            code: 1,
-        })
-    }
-}
-
 /// clap's usage error as one line: its message, the argument it names
 /// (clap puts lists such as the missing arguments on lines of their own),
 /// its tip and the usage, joined; `--help` and `--version` print as usual.
@@ -272,9 +173,7 @@ fn parse_args() -> Result<Cli, ExitCode> {
             .lines()
             .find_map(|l| l.trim().strip_prefix("Usage: "))
             .unwrap_or("iga-contact <COMMAND>");
-        format!(
-            "a command is required (usage: {usage}; commands: run, check, reproduce; see --help)"
-        )
+        format!("a command is required (usage: {usage}; commands: run, check; see --help)")
     } else {
         usage_line(&text)
     };
@@ -352,7 +251,6 @@ fn main() -> ExitCode {
             max_memory,
         } => run(&scene, out, max_memory),
         Command::Check { scene, max_memory } => check(&scene, max_memory),
-        Command::Reproduce { only, all } => reproduce(only, all),
     });
     match outcome {
         Ok(Ok(())) => ExitCode::SUCCESS,
@@ -362,4 +260,90 @@ fn main() -> ExitCode {
         }
         Err(_) => ExitCode::from(1),
     }
+}
+
+/// The global allocator of this binary (feature `allocator`, on by
+/// default); the library declares none, so a program built on it keeps its
+/// own, and the chapter programs get theirs from the book's companion crate.
+///
+/// Two reasons. Speed: assembly still allocates per element (the element
+/// matrix, its DOF lists) and the triplet and column buffers grow from
+/// every thread. The per-point vectors that made glibc's malloc twice as
+/// slow are gone (`space::ElementValues`), and mimalloc still pays:
+/// assembling the CSC stiffness of Hertz p = 2 took 0.29 s with the
+/// system allocator against 0.20 s with mimalloc at 256², and 1.61 s
+/// against 0.76 s at 512² (medians of five runs of
+/// `examples/assembly_bench.rs -- assembly 5 256 512` on a shared
+/// two-core machine; before the buffers: 0.50 s and 0.27 s, 1.94 s and
+/// 1.01 s). Safety: a failed allocation ends the process with one `error:`
+/// line and exit code 1 instead of Rust's abort.
+#[cfg(feature = "allocator")]
+mod allocator {
+    use std::alloc::{GlobalAlloc, Layout};
+    use std::io::Write;
+
+    /// The allocator the guard forwards to.
+    static INNER: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+    /// The allocator, except that a failed allocation ends the process
+    /// with one `error:` line and exit code 1 instead of Rust's abort (SIGABRT,
+    /// "memory allocation of … bytes failed"). The resource estimate refuses
+    /// runs that would not fit before they start; this is the last line of
+    /// defence when the estimate is exceeded (another process took the memory,
+    /// a `ulimit -v` tighter than the budget).
+    struct Guarded;
+
+    // SAFETY: every call is forwarded to the inner allocator unchanged; only
+    // a null result is intercepted, and then the process ends.
+    unsafe impl GlobalAlloc for Guarded {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            let p = INNER.alloc(layout);
+            if p.is_null() {
+                out_of_memory(layout.size());
+            }
+            p
+        }
+
+        unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+            let p = INNER.alloc_zeroed(layout);
+            if p.is_null() {
+                out_of_memory(layout.size());
+            }
+            p
+        }
+
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+            let p = INNER.realloc(ptr, layout, new_size);
+            if p.is_null() {
+                out_of_memory(new_size);
+            }
+            p
+        }
+
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            INNER.dealloc(ptr, layout)
+        }
+    }
+
+    /// Reports a failed allocation and exits, allocating nothing: the message
+    /// is formatted into a stack buffer and written with `write(2)`.
+    fn out_of_memory(size: usize) -> ! {
+        let mut buf = [0u8; 320];
+        let mut cur = std::io::Cursor::new(&mut buf[..]);
+        let _ = writeln!(
+            cur,
+            "error: out of memory: allocating {size} bytes failed; the run needs more memory than is \
+             available (lower --max-memory to have such runs refused before they start)"
+        );
+        let n = cur.position() as usize;
+        // SAFETY: writes n initialised bytes of `buf` to stderr, then exits
+        // without running destructors or allocating.
+        unsafe {
+            libc::write(2, buf.as_ptr().cast(), n);
+            libc::_exit(1)
+        }
+    }
+
+    #[global_allocator]
+    static ALLOCATOR: Guarded = Guarded;
 }

@@ -375,7 +375,7 @@ impl Budget {
 }
 
 /// `MemTotal` from `/proc/meminfo`, in bytes.
-pub(crate) fn meminfo_total() -> Option<u64> {
+pub fn meminfo_total() -> Option<u64> {
     meminfo("MemTotal:")
 }
 

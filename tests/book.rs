@@ -7,9 +7,9 @@
 mod common;
 
 use common::example;
+use companion::chapter::{generated_root, Cost, Manifest, PROGRAMS};
+use companion::facts::{self, Facts};
 use iga_contact::report::atomic;
-use iga_contact::report::chapter::{generated_root, Cost, Manifest, PROGRAMS};
-use iga_contact::report::facts::{self, Facts};
 use std::path::{Path, PathBuf};
 
 fn book_src() -> PathBuf {

@@ -54,7 +54,7 @@ fn variants() -> Vec<(String, SolverOptions)> {
 /// The compression scene with its top lowered by `top`, its mesh and
 /// floor replaced, and θ set.
 fn block(top: f64, degree: usize, elements: [usize; 2], floor_y: f64, theta: i32) -> Scene {
-    let text = std::fs::read_to_string(iga_contact::scene::shipped_path("block_compression.toml"))
+    let text = std::fs::read_to_string(companion::shipped_path("block_compression.toml"))
         .unwrap()
         .replace(
             "from = [-0.5, 0.0], to = [1.5, 0.0]",
@@ -147,7 +147,7 @@ fn an_unreached_floor_leaves_the_block_rigid() {
         block(-DELTA, 2, [4, 1], -1.0, 0),
         Exact::Rigid(-DELTA),
     );
-    let far = std::fs::read_to_string(iga_contact::scene::shipped_path("block_compression.toml"))
+    let far = std::fs::read_to_string(companion::shipped_path("block_compression.toml"))
         .unwrap()
         .replace(
             "from = [-0.5, 0.0], to = [1.5, 0.0]",

@@ -11,9 +11,7 @@ use iga_contact::nurbs::{NurbsPatch, Side};
 use iga_contact::space::Space;
 use nalgebra::SymmetricEigen;
 
-#[allow(dead_code)]
-#[path = "../examples/lame.rs"]
-mod lame;
+use companion::lame;
 
 /// A quadrilateral with no two sides parallel, k-refined to degree `p`,
 /// whose interior control points and weights are then moved by a fixed

@@ -2,8 +2,7 @@
 //! accuracy against Hertz, mesh convergence and the floating-body error.
 
 mod common;
-#[path = "../examples/common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
 use common::{hertz, hertz_scene, norm};
 use iga_contact::assembly::Load;

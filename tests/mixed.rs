@@ -6,11 +6,8 @@
 //! incompressibility, the warning and the scene key.
 
 mod common;
-#[path = "../examples/lame.rs"]
-#[allow(dead_code)]
-mod lame;
-#[path = "../examples/common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
+use companion::lame;
 
 use iga_contact::assembly::{self, ElementStress};
 use iga_contact::contact::{Penalty, Theta};

@@ -247,7 +247,7 @@ fn hertz(factor: f64) -> Hertz {
 /// The shipped scene `file`, refined to `n × n`, its body force times
 /// `factor`: (p₀, a, zones, warnings) over its first contact's pieces.
 fn run(file: &str, n: usize, factor: f64) -> (f64, f64, usize, Vec<Warning>) {
-    let mut scene = Scene::shipped(file)
+    let mut scene = companion::shipped(file)
         .unwrap()
         .refined("disk", RefineSpec::iga(2, [n, n]))
         .unwrap();
@@ -307,8 +307,7 @@ fn heavy_load_crosses_the_join_as_one_zone_without_a_side_end_warning() {
 
 #[test]
 fn multi_patch_keys_are_checked_with_one_error_line() {
-    let base =
-        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let base = std::fs::read_to_string(companion::shipped_path("hertz_multipatch.toml")).unwrap();
     let cases = [
         // a patch side on a body of several patches
         (
@@ -346,8 +345,7 @@ fn point_supports_at_patch_corners_hold_the_body() {
     // (the core's corners on the diameter) instead of the whole side: the
     // body is still held (the well-posedness check passes) and in x only
     // there, so the contact force balances the load
-    let base =
-        std::fs::read_to_string(iga_contact::scene::shipped_path("hertz_multipatch.toml")).unwrap();
+    let base = std::fs::read_to_string(companion::shipped_path("hertz_multipatch.toml")).unwrap();
     let text = base.replacen(
         "boundary = \"straight\"\ncomponent = \"x\"\nvalue = 0.0",
         "point = [0.0, 0.12]\ncomponent = \"x\"\n\n[[support]]\nbody = \"disk\"\npoint = [0.0, 0.28]\ncomponent = \"x\"",

@@ -25,7 +25,7 @@ fn workdir(name: &str) -> PathBuf {
 /// scene taken out: the `[timing]` table of `summary.toml` (wall-clock
 /// times) and, in the manifest, the byte counts that follow from it.
 fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    iga_contact::timing::untimed_snapshot(dir).unwrap()
+    companion::timing::untimed_snapshot(dir).unwrap()
 }
 
 /// Staging entries beside `target`, by name.

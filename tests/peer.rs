@@ -3,13 +3,10 @@
 //! the penalty of Eq. (11), and bad data is refused naming the file, the
 //! line, the column and the value.
 
-#[path = "../examples/error_vs_time/getfem.rs"]
-#[allow(dead_code)]
-mod getfem;
+use companion::getfem;
 
 mod common;
-#[path = "../examples/common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
 use iga_contact::post::Reference;
 use iga_contact::scene::RefineSpec;

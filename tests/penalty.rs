@@ -6,7 +6,7 @@
 use iga_contact::contact::penalty::stability_bound;
 use iga_contact::contact::{Penalty, Theta};
 use iga_contact::post::penalty_stability;
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, Warning};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -157,7 +157,7 @@ fn check_warns_where_the_bodies_first_touch() {
 #[test]
 fn the_warning_follows_the_bound() {
     let scene = |theta: Theta, penalty: Penalty, factor: f64| {
-        let mut s = Scene::shipped("hertz.toml")
+        let mut s = companion::shipped("hertz.toml")
             .unwrap()
             .refined("disk", RefineSpec::iga(2, [8, 8]))
             .unwrap()
@@ -252,12 +252,12 @@ fn below_bound(w: &[Warning]) -> bool {
 /// dense Cholesky accepts it (it is symmetric for θ = 1).
 fn tied_kernel_is_positive_definite(mesh: [usize; 2], block: bool, safety: f64) -> bool {
     let base = if block {
-        Scene::shipped("block_compression.toml")
+        companion::shipped("block_compression.toml")
             .unwrap()
             .refined("block", RefineSpec::iga(2, mesh))
             .unwrap()
     } else {
-        Scene::shipped("hertz.toml")
+        companion::shipped("hertz.toml")
             .unwrap()
             .refined("disk", RefineSpec::iga(2, mesh))
             .unwrap()

@@ -2,8 +2,7 @@
 //! paper's mesh, and the pressure-profile error under refinement.
 
 mod common;
-#[path = "../examples/common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
 use common::hertz_scene;
 use iga_contact::contact::Theta;

@@ -301,7 +301,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     (
         "scenes.md",
         "and every chapter program write code the same way",
-        "the chapter programs write through report::chapter, which commits an OutputSet",
+        "the chapter programs write through companion::chapter, which commits an OutputSet",
     ),
     (
         "claims.md",

@@ -69,7 +69,7 @@ fn rescale(v: &mut Value, length: f64, stiffness: f64) {
 /// The shipped scene `file` in units where one length is `length` and one
 /// stress `stiffness`, with `solver` if given instead of the scene's own.
 fn scaled(file: &str, length: f64, stiffness: f64, solver: Option<SolverKind>) -> Scene {
-    let text = std::fs::read_to_string(iga_contact::scene::shipped_path(file)).unwrap();
+    let text = std::fs::read_to_string(companion::shipped_path(file)).unwrap();
     let mut value: Value = toml::from_str(&text).unwrap();
     rescale(&mut value, length, stiffness);
     if let Some(t) = value.as_table_mut() {

@@ -229,7 +229,7 @@ fn the_default_solver_needs_few_iterations_on_hertz() {
 #[test]
 fn the_disk_on_a_block_takes_its_active_set_in_few_iterations() {
     for (n, factor) in [(32, 20.0), (32, 30.0), (64, 20.0)] {
-        let p = iga_contact::scene::Scene::shipped("disk_on_block.toml")
+        let p = companion::shipped("disk_on_block.toml")
             .unwrap()
             .refined("disk", iga_contact::scene::RefineSpec::iga(2, [n, n]))
             .unwrap()

@@ -3,15 +3,13 @@
 //! does not, and the chapter program writes the same bytes on every run.
 
 mod common;
-#[path = "../examples/taylor/patch.rs"]
-mod patch;
 
 use common::{example, taylor, taylor_scene};
+use companion::taylor::{consistency, exact_full, patch_errors, Exact, PatchErrors};
 use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
 use iga_contact::solver::solve;
-use patch::{consistency, exact_full, patch_errors, Exact, PatchErrors};
 
 const TOL: f64 = 1e-10;
 

@@ -7,10 +7,10 @@ use iga_contact::contact::projection::closest_point;
 use iga_contact::contact::{Role, Sides};
 use iga_contact::nurbs::Side;
 use iga_contact::problem::Problem;
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 
 fn disk_on_block(n: usize) -> Problem {
-    Scene::shipped("disk_on_block.toml")
+    companion::shipped("disk_on_block.toml")
         .unwrap()
         .refined("disk", RefineSpec::iga(2, [n, n]))
         .unwrap()

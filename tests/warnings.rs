@@ -44,7 +44,7 @@ fn hertz_p0(scene: &Scene) -> f64 {
 }
 
 fn hertz(elements: usize) -> Scene {
-    let mut s = Scene::shipped("hertz.toml")
+    let mut s = companion::shipped("hertz.toml")
         .unwrap()
         .refined("disk", RefineSpec::iga(2, [elements, elements]))
         .unwrap();
@@ -54,7 +54,7 @@ fn hertz(elements: usize) -> Scene {
 }
 
 fn disk_on_block(stiffness_ratio: f64) -> Scene {
-    let mut s = Scene::shipped("disk_on_block.toml").unwrap();
+    let mut s = companion::shipped("disk_on_block.toml").unwrap();
     s.body_mut("block").unwrap().material.young *= stiffness_ratio;
     s.output = Default::default();
     s
@@ -238,7 +238,7 @@ fn a_zone_that_reaches_the_end_of_the_slave_side_is_warned() {
         .collect();
     assert_eq!(at_end.len(), 1, "{:?}", s.warnings);
     for scene in [hertz(16), {
-        let mut t = Scene::shipped("taylor.toml").unwrap();
+        let mut t = companion::shipped("taylor.toml").unwrap();
         t.output = Default::default();
         t
     }] {
@@ -262,7 +262,7 @@ fn one_cause_gives_one_warning_line_with_one_remedy() {
     let dir = std::env::temp_dir().join(format!("iga-warnings-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // the shipped Hertz scene with θ = 1 and the library's default solver
-    let text = std::fs::read_to_string(iga_contact::scene::shipped_path("hertz.toml")).unwrap();
+    let text = std::fs::read_to_string(companion::shipped_path("hertz.toml")).unwrap();
     let (head, tail) = text.split_at(text.find("[solver]").unwrap());
     let text = format!("{head}{}", &tail[tail.find("[output]").unwrap()..])
         .replace("nitsche = { theta = 0,", "nitsche = { theta = 1,");

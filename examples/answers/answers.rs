@@ -13,10 +13,10 @@ use crate::harness::{launch, Launch, Outcome};
 pub const LIMIT: u64 = 8 << 30;
 /// Seconds a launch may take before it is stopped.
 pub const TIMEOUT: f64 = 30.0;
+use companion::chapter::Chapter;
 use iga_contact::material::{Material, Plane};
 use iga_contact::post::hertz::{Cylinder, Hertz};
 use iga_contact::post::PressureProfile;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::Scene;
 use iga_contact::solver::{solve, SolverOptions};
@@ -256,10 +256,12 @@ summary = true
 /// than the disk, the disk on `n`² and the block on 2n × n, and the slave
 /// either the disk (the softer body) or the block.
 fn disk_on_block(ratio: f64, n: usize, block_slave: bool, newton: bool) -> Result<String> {
-    let text = std::fs::read_to_string(iga_contact::scene::shipped_path("disk_on_block.toml"))
-        .map_err(|e| iga_contact::Error::Io {
-            path: "disk_on_block.toml".into(),
-            source: e,
+    let text =
+        std::fs::read_to_string(companion::shipped_path("disk_on_block.toml")).map_err(|e| {
+            iga_contact::Error::Io {
+                path: "disk_on_block.toml".into(),
+                source: e,
+            }
         })?;
     let mut text = text
         .replace(

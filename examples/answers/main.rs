@@ -10,17 +10,15 @@
 //! converged run (`answers.rs`).
 //!
 //! Output: `book/src/generated/answers/`. A heavy program (about 2 minutes
-//! on an idle two-core machine): `iga-contact reproduce --only answers`.
+//! on an idle two-core machine): `reproduce --only answers`.
 
-#[allow(dead_code)] // shared with the reliability program, each using part
-#[path = "../reliability/harness.rs"]
-mod harness;
+use companion::harness;
 
 mod answers;
 
-use iga_contact::report::chapter::Chapter;
+use companion::chapter::Chapter;
+use companion::timing::Machine;
 use iga_contact::report::table::Format;
-use iga_contact::timing::Machine;
 use iga_contact::Result;
 use std::time::Instant;
 

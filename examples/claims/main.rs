@@ -6,14 +6,14 @@
 //! paper a rule that turns the evidence into a verdict — holds, holds with
 //! limits, does not hold — and writes the verdict table and its facts to
 //! `book/src/generated/claims/`. It must run after the chapters it reads
-//! (`report::chapter::PROGRAMS` lists it after them).
+//! (`companion::PROGRAMS` lists it after them).
 //!
 //! Run it with `cargo run --release --example claims`.
 
-use iga_contact::book::facts;
+use companion::chapter::Chapter;
+use companion::facts;
+use companion::facts::Facts;
 use iga_contact::error::{Error, Result};
-use iga_contact::report::chapter::Chapter;
-use iga_contact::report::facts::Facts;
 use iga_contact::report::table::{Column, Format, Table};
 
 // ANCHOR: verdict

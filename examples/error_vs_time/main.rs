@@ -2,22 +2,21 @@
 //! IGA p = 2, 3, 4 and FEM Q1, Q2 over a ladder of Hertz meshes, each error
 //! against a converged fine-mesh reference and against the wall time spent.
 //! Output: `book/src/generated/error_vs_time/`. GetFEM's runs beside ours
-//! are the heavy program `getfem_peer` (which uses `getfem.rs` here).
+//! are the heavy program `getfem_peer` (its peer module is `companion::getfem`).
 //!
 //! Run it with `cargo run --release --example error_vs_time`.
 
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
+use companion::timing::median_time;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::Hertz;
 use iga_contact::post::{relative, Errors, PressureProfile, Reference};
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
-use iga_contact::timing::median_time;
 
 // ANCHOR: setup
 /// Elements per direction of the ladder.

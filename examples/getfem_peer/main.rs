@@ -11,18 +11,16 @@
 //!
 //! `cargo run --release --example getfem_peer` (a few minutes).
 
-#[path = "../error_vs_time/getfem.rs"]
-mod getfem;
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::getfem;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
+use companion::timing::{median_time, Machine};
 use iga_contact::error::{Error, Result};
 use iga_contact::post::{relative, Reference};
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
-use iga_contact::timing::{median_time, Machine};
 use std::process::ExitCode;
 
 // ANCHOR: setup

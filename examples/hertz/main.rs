@@ -11,15 +11,15 @@
 //!
 //! Run it with `cargo run --release --example hertz`.
 
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
+use companion::timing::median_time;
 use iga_contact::error::{Error, Result};
 use iga_contact::nurbs::Side;
 use iga_contact::post::hertz::Hertz;
 use iga_contact::post::{self, relative, PressureProfile};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::drawing::{control_net, element_lines, field_cells, labelled, Placement};
 use iga_contact::report::history::history_table;
 use iga_contact::report::plot::{
@@ -30,7 +30,6 @@ use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::history::{Event, History};
 use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
-use iga_contact::timing::median_time;
 use std::collections::BTreeMap;
 
 // ANCHOR: constants

@@ -8,17 +8,16 @@
 //!
 //! Run it with `cargo run --release --example iga_vs_fem`.
 
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
+use companion::timing::median_time;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::{relative, PressureProfile};
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
-use iga_contact::timing::median_time;
 
 // ANCHOR: paper
 /// The paper's 8×8 single-thread comparison: total time (s) and the largest
@@ -146,7 +145,7 @@ fn main() -> Result<()> {
     // The disk's converged solution (the Hertz chapter's reference, p = 3,
     // 128²): Hertz's formula is itself off this model by about 1–2 %, so
     // the errors are given against both.
-    let hertz_facts = iga_contact::book::facts("hertz")?;
+    let hertz_facts = companion::facts("hertz")?;
     let reference = |key: &str, scale: f64| {
         hertz_facts
             .value(key)

@@ -9,12 +9,9 @@
 //!
 //! Run it with `cargo run --release --example incompressibility`.
 
-#[path = "../common/hertz.rs"]
-mod hertz;
-#[path = "../lame.rs"]
-#[allow(dead_code)]
-mod lame;
+use companion::{hertz, lame};
 
+use companion::chapter::Chapter;
 use iga_contact::assembly::ElementStress;
 use iga_contact::contact::Penalty;
 use iga_contact::error::Result;
@@ -22,7 +19,6 @@ use iga_contact::material::Formulation;
 use iga_contact::nurbs::Side;
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::Scene;

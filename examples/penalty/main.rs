@@ -8,19 +8,16 @@
 //!
 //! Run it with `cargo run --release --example penalty`.
 
-#[path = "../common/penalty.rs"]
-mod common;
-
-use common::{hertz, measure};
+use companion::chapter::Chapter;
+use companion::penalty::{hertz, measure};
 use iga_contact::contact::penalty::stability_bound;
 use iga_contact::contact::{ContactPoint, Penalty, Theta};
 use iga_contact::error::Result;
 use iga_contact::post::{penalty_stability, relative};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{SolverKind, SolverOptions};
 
 // ANCHOR: setups
@@ -50,14 +47,14 @@ fn refine(p: usize, elements: [usize; 2]) -> RefineSpec {
 /// elements).
 fn setups(p: usize, n: usize) -> Result<[Problem; 4]> {
     let m = (n / 4).max(1);
-    let hertz = Scene::shipped("hertz.toml")?.refined("disk", refine(p, [n, n]))?;
-    let taylor = Scene::shipped("taylor.toml")?
+    let hertz = companion::shipped("hertz.toml")?.refined("disk", refine(p, [n, n]))?;
+    let taylor = companion::shipped("taylor.toml")?
         .refined("lower", refine(p, [4 * m, 2 * m]))?
         .refined("upper", refine(p, [3 * m, 2 * m]))?;
-    let cylinders = Scene::shipped("two_cylinders.toml")?
+    let cylinders = companion::shipped("two_cylinders.toml")?
         .refined("upper", refine(p, [n, n]))?
         .refined("lower", refine(p, [2 * n, 2 * n]))?;
-    let block = Scene::shipped("minimal.toml")?.refined("block", refine(p, [n, n / 2]))?;
+    let block = companion::shipped("minimal.toml")?.refined("block", refine(p, [n, n / 2]))?;
     Ok([
         hertz.build()?,
         taylor.build()?,

@@ -8,18 +8,15 @@
 //! Run it with `cargo run --release --example penalty_contrast` (a few
 //! minutes of one core).
 
-#[path = "../common/penalty.rs"]
-mod common;
-
-use common::{hertz, measure, Run};
+use companion::chapter::Chapter;
+use companion::penalty::{hertz, measure, Run};
 use iga_contact::contact::{Modulus, Role, Sides, Theta};
 use iga_contact::error::Result;
 use iga_contact::post::{self, penalty_stability, relative};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{SolverKind, SolverOptions};
 
 // ANCHOR: contrast_setup
@@ -46,7 +43,7 @@ fn disk_on_block(
     sides: Sides,
     theta: Theta,
 ) -> Result<Problem> {
-    let mut s = Scene::shipped("disk_on_block.toml")?
+    let mut s = companion::shipped("disk_on_block.toml")?
         .refined("disk", RefineSpec::iga(2, [n, n]))?
         .refined("block", RefineSpec::iga(2, [2 * n, n]))?
         .with_nitsche(|x| {

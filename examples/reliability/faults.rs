@@ -61,7 +61,7 @@ impl Fixture {
             Launch::default(),
         );
         assert!(o.code == Some(0), "{}", o.stderr);
-        let new = iga_contact::timing::untimed_snapshot(&dir.join("reference")).expect("readable");
+        let new = companion::timing::untimed_snapshot(&dir.join("reference")).expect("readable");
         let mut f = Self {
             out: dir.join("out"),
             dir,
@@ -70,7 +70,7 @@ impl Fixture {
             seconds: o.seconds,
         };
         f.reset();
-        f.old = iga_contact::timing::untimed_snapshot(&f.out).expect("readable");
+        f.old = companion::timing::untimed_snapshot(&f.out).expect("readable");
         // the time of a run as the faults meet it: the median of five
         // (the first run of a fresh scene is the slowest)
         let mut times: Vec<f64> = (0..5)
@@ -105,7 +105,7 @@ impl Fixture {
     }
 
     fn trial(&self, outcome: Outcome) -> Trial {
-        let now = iga_contact::timing::untimed_snapshot(&self.out).unwrap_or_default();
+        let now = companion::timing::untimed_snapshot(&self.out).unwrap_or_default();
         let state = if now == self.old {
             "old"
         } else if now == self.new {

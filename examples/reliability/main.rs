@@ -16,21 +16,20 @@
 //!    SIGTERM, concurrent runs into one folder.
 //!
 //! Output: `book/src/generated/reliability/`. A heavy program (about 15
-//! minutes and up to 6 GB on two cores): `iga-contact reproduce --all`, or
+//! minutes and up to 6 GB on two cores): `reproduce --all`, or
 //! `cargo build --release && cargo run --release --example reliability`.
 
 mod campaign;
 mod faults;
-#[allow(dead_code)] // shared with the answers and memory_table programs, each using part
-mod harness;
+use companion::harness;
 
+use companion::chapter::Chapter;
+use companion::timing::{median_time, Machine};
 use harness::{body_scene, commit, launch, mesh, refine, Launch, SHAPES};
 use iga_contact::post::contact_resultant;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{Scene, MAX_DEGREE, MAX_ELEMENTS};
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
-use iga_contact::timing::{median_time, Machine};
 use iga_contact::{geometry, Result};
 use std::path::Path;
 use std::time::Instant;
@@ -166,9 +165,9 @@ fn refinement(chapter: &mut Chapter) -> Result<()> {
 // ANCHOR: illposed
 /// Scenes that cannot be solved as posed, and what `check` answers.
 fn ill_posed(work: &Path, chapter: &mut Chapter) -> Result<usize> {
-    let minimal = std::fs::read_to_string(iga_contact::scene::shipped_path("minimal.toml"))
+    let minimal = std::fs::read_to_string(companion::shipped_path("minimal.toml"))
         .expect("the shipped minimal scene");
-    let taylor = std::fs::read_to_string(iga_contact::scene::shipped_path("taylor.toml"))
+    let taylor = std::fs::read_to_string(companion::shipped_path("taylor.toml"))
         .expect("the shipped Taylor scene");
     let rollers = "[[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
     let upper = "[[support]]\nbody = \"upper\"\nside = \"xi_min\"\ncomponent = \"x\"\n";
@@ -272,7 +271,7 @@ master = {{ rigid_segment = {{ from = [-1.0, 0.0], to = [2.0, 0.0] }} }}
 }
 
 fn disk(gap: f64) -> String {
-    let hertz = std::fs::read_to_string(iga_contact::scene::shipped_path("hertz.toml"))
+    let hertz = std::fs::read_to_string(companion::shipped_path("hertz.toml"))
         .expect("the shipped Hertz scene");
     let solver = hertz.find("[solver]").unwrap_or(hertz.len());
     hertz[..solver].replace(

@@ -10,10 +10,10 @@
 //! `cargo build --release && cargo run --release --example scenes` (the
 //! binary must be built first: `cargo run --example` builds only examples).
 
-use iga_contact::report::chapter::{cli_binary, Chapter, Cost, PROGRAMS};
+use companion::chapter::{cli_binary, Chapter, Cost, PROGRAMS};
 use iga_contact::report::table::{Column, Format, Table};
 use iga_contact::resources::{ADDRESS_SPACE_SHARE, PHYSICAL_SHARE};
-use iga_contact::scene::{self, OutputSpec, Scene};
+use iga_contact::scene::{self, OutputSpec};
 use iga_contact::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -35,7 +35,7 @@ impl Shell {
         std::fs::create_dir_all(&scenes).map_err(io(&scenes))?;
         for file in shipped()? {
             let to = scenes.join(&file);
-            std::fs::copy(scene::shipped_path(&file), &to).map_err(io(&to))?;
+            std::fs::copy(companion::shipped_path(&file), &to).map_err(io(&to))?;
         }
         Ok(Self {
             bin: cli_binary()?,
@@ -47,7 +47,7 @@ impl Shell {
     /// replaced by `to` (which must occur).
     fn edited(&self, name: &str, from: &str, to: &str) -> Result<()> {
         let text =
-            std::fs::read_to_string(scene::shipped_path("hertz.toml")).map_err(|source| {
+            std::fs::read_to_string(companion::shipped_path("hertz.toml")).map_err(|source| {
                 Error::Io {
                     path: "hertz.toml".into(),
                     source,
@@ -118,7 +118,7 @@ fn mask_seconds(line: &str) -> String {
 
 /// The shipped scene files, sorted.
 fn shipped() -> Result<Vec<String>> {
-    let dir = scene::shipped_path("");
+    let dir = companion::shipped_path("");
     let mut files: Vec<String> = std::fs::read_dir(&dir)
         .map_err(|source| Error::Io {
             path: dir.display().to_string(),
@@ -167,7 +167,7 @@ fn main() -> Result<()> {
         Column::plain("outputs", "outputs"),
     ]);
     for file in shipped()? {
-        let scene = Scene::shipped(&file)?;
+        let scene = companion::shipped(&file)?;
         let outputs = scene.output.file_names();
         table.push(vec![
             format!("`{file}`").into(),
@@ -190,12 +190,7 @@ fn main() -> Result<()> {
 
     // The command line's own help.
     let mut log = String::new();
-    for args in [
-        &["--help"][..],
-        &["run", "--help"],
-        &["check", "--help"],
-        &["reproduce", "--help"],
-    ] {
+    for args in [&["--help"][..], &["run", "--help"], &["check", "--help"]] {
         shell.run(&mut log, "", args)?;
     }
     chapter.text("help.txt", &log)?;
@@ -332,7 +327,6 @@ fn main() -> Result<()> {
         ],
     )?;
     shell.run(&mut log, "", &["check", "no_such_scene.toml"])?;
-    shell.run(&mut log, "", &["reproduce", "--only", "hertz_chapter"])?;
     chapter.text("errors.txt", &log)?;
     // ANCHOR_END: errors
 

@@ -5,20 +5,18 @@
 //!
 //! Run it with `cargo run --release --example solvers`.
 
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
+use companion::timing::median_time;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::PressureProfile;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::history::history_table;
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
-use iga_contact::scene::Scene;
 use iga_contact::solver::history::Event;
 use iga_contact::solver::history::History;
 use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions, Start};
-use iga_contact::timing::median_time;
 
 /// Elements per direction.
 const MESHES: [usize; 4] = [8, 16, 32, 64];
@@ -208,7 +206,7 @@ fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
         Column::plain("first_correction", "first corr."),
     ]);
     for (key, file, solver, steps, opts) in paper_runs() {
-        let problem = Scene::shipped(file)?.build()?;
+        let problem = companion::shipped(file)?.build()?;
         let s = solve(&problem, &opts)?;
         let h = &s.history;
         let corrected = first(&s, Event::Correction);

@@ -7,15 +7,14 @@
 //!
 //! Run it with `cargo run --release --example stability`.
 
-#[path = "../common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
+use companion::chapter::Chapter;
 use iga_contact::assembly::{strain_stress, Load};
 use iga_contact::contact::{Integration, Penalty, Theta};
 use iga_contact::error::{Error, ErrorKind, Result};
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
 use iga_contact::solver::history::{Event, History};
@@ -55,7 +54,7 @@ fn hertz(p: usize, n: usize) -> Result<Scene> {
 }
 
 fn taylor() -> Result<Scene> {
-    Scene::shipped("taylor.toml")
+    companion::shipped("taylor.toml")
 }
 
 /// Every Nitsche parameter group of a scene, set by `f`.
@@ -499,7 +498,7 @@ fn main() -> Result<()> {
         PressureProfile::dense(&p, &sol.full)?.measures(0).p0
     };
     // The Hertz chapter's converged reference (p = 3, 128²), from its facts.
-    let reference_fine = iga_contact::book::facts("hertz")?
+    let reference_fine = companion::facts("hertz")?
         .value("reference_p0_mpa")
         .ok_or_else(|| Error::invalid("hertz facts", "reference_p0_mpa", "missing"))?
         * 1e6;

@@ -11,13 +11,12 @@
 //!
 //! Run it with `cargo run --release --example taylor`.
 
-mod patch;
-
+use companion::chapter::Chapter;
+use companion::taylor::{consistency, patch_errors, Exact, PatchErrors, SIDE_SAMPLES};
 use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
 use iga_contact::error::Result;
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::drawing::{
     control_net, element_lines, field_cells, labelled, FieldPoint, Placement,
 };
@@ -27,7 +26,6 @@ use iga_contact::report::table::{Column, Format, Table, Unit};
 use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::{solve, Solution};
-use patch::{consistency, patch_errors, Exact, PatchErrors};
 
 // ANCHOR: paper
 /// What the paper reports for its solve of the test: BFGS iterations and
@@ -93,7 +91,7 @@ fn rule_name(rule: Integration) -> &'static str {
 // ANCHOR: solve
 /// Solves the scene with contact integration `rule` and measures it.
 fn solve_case(rule: Integration) -> Result<Case> {
-    let mut scene = Scene::shipped("taylor.toml")?;
+    let mut scene = companion::shipped("taylor.toml")?;
     for nitsche in scene.nitsche_mut() {
         nitsche.integration = rule;
     }
@@ -315,7 +313,7 @@ fn main() -> Result<()> {
         f.number(&format!("{name}_first_residual"), first, Format::Pow10(0))?;
     }
     f.count("gauss_points_checked", segment.errors.gauss_points)?;
-    f.count("side_samples", patch::SIDE_SAMPLES)?;
+    f.count("side_samples", SIDE_SAMPLES)?;
     // the exact state widens the blocks by ε_xx = ν p / E
     let widening = segment.exact.displacement([1.0, 0.0])[0];
     f.number("relative_widening", widening, Format::Percent(0))?;

@@ -8,12 +8,12 @@
 //!
 //! Run it with `cargo run --release --example two_cylinders`.
 
+use companion::chapter::Chapter;
 use iga_contact::assembly::Load;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::{Cylinder, Hertz};
 use iga_contact::post::{self, relative, PressureProfile};
 use iga_contact::problem::Problem;
-use iga_contact::report::chapter::Chapter;
 use iga_contact::report::drawing::{field_cells, Placement};
 use iga_contact::report::plot::{
     field_figure, line_chart, Axes, LineKind, Polyline, Series, BLACK_INDEX,
@@ -32,7 +32,7 @@ const REFERENCE: (usize, usize) = (3, 64);
 
 /// The scene with degree `p` and `n`² (upper) and (2n)² (lower) elements.
 fn scene(p: usize, n: usize) -> Result<Scene> {
-    let mut s = Scene::shipped("two_cylinders.toml")?
+    let mut s = companion::shipped("two_cylinders.toml")?
         .refined("upper", RefineSpec::iga(p, [n, n]))?
         .refined("lower", RefineSpec::iga(p, [2 * n, 2 * n]))?;
     s.output = Default::default();

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 /// A shipped scene file, loaded.
 pub fn scene(file: &str) -> Scene {
-    Scene::shipped(file).unwrap_or_else(|e| panic!("{file}: {e}"))
+    companion::shipped(file).unwrap_or_else(|e| panic!("{file}: {e}"))
 }
 
 /// The Hertz scene with p = `degree` on `elements`² and the given θ.

@@ -1,22 +1,12 @@
 //! The book's chapters as doc-tests: every Rust code block of every chapter
 //! is compiled and run by `cargo test`, so the book cannot drift from the code.
 
-use crate::error::Result;
-use crate::report::chapter::generated_root;
-use crate::report::facts::Facts;
-
-/// The facts the program of `chapter` wrote (`book/src/generated/<chapter>/facts.txt`),
-/// for the doc-tests that check what the chapter's prose says about them.
-pub fn facts(chapter: &str) -> Result<Facts> {
-    Facts::load(generated_root().join(chapter))
-}
-
 // ANCHOR: chapters
 macro_rules! chapters {
     ($($name:ident => $file:literal),* $(,)?) => {
         $(
             #[cfg(doctest)]
-            #[doc = include_str!(concat!("../book/src/", $file))]
+            #[doc = include_str!(concat!("../../src/", $file))]
             pub mod $name {}
         )*
     };

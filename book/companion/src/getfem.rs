@@ -8,10 +8,9 @@ use iga_contact::contact::{ContactPoint, Role};
 use iga_contact::error::{Error, Result};
 use iga_contact::post;
 use iga_contact::problem::Problem;
-use std::path::Path;
 use std::process::Command;
 
-/// The script, and where it writes its CSV, from the crate's root.
+/// The script, and where it writes its CSV, from the source tree's root.
 pub const SCRIPT: &str = "scripts/getfem_hertz.py";
 pub const CSV: &str = "data/getfem/hertz_getfem.csv";
 /// The interpreter Debian's `python3-getfem` installs for.
@@ -65,7 +64,7 @@ pub fn available() -> bool {
 /// Runs the script on `ladder` (elements per direction, for Q1 and Q2) at
 /// the penalty factors `factors`, and reads what it wrote.
 pub fn run(ladder: &[usize], factors: &[f64]) -> Result<Peer> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::source_root();
     let meshes: Vec<String> = ladder.iter().map(|n| n.to_string()).collect();
     let meshes = meshes.join(",");
     let factors: Vec<String> = factors.iter().map(|f| f.to_string()).collect();
@@ -94,7 +93,7 @@ pub fn run(ladder: &[usize], factors: &[f64]) -> Result<Peer> {
 
 /// Reads [`CSV`].
 pub fn load() -> Result<Peer> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(CSV);
+    let path = crate::source_root().join(CSV);
     let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
         path: path.display().to_string(),
         source,

@@ -1,5 +1,3 @@
-#![allow(dead_code)] // each program reads its own part of a measured solve
-
 //! What the programs of "The penalty, measured" share (`penalty`, quick,
 //! and `penalty_contrast`, heavy): one solve measured on the dense pressure
 //! profile, and the Hertz disk with chosen Nitsche parameters.
@@ -8,7 +6,7 @@ use iga_contact::contact::Nitsche;
 use iga_contact::error::Result;
 use iga_contact::post::PressureProfile;
 use iga_contact::problem::Problem;
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, Solution, SolverOptions};
 
 /// One converged solve, measured on the dense profile.
@@ -41,7 +39,7 @@ pub fn measure(problem: &Problem, options: &SolverOptions) -> Result<Run> {
 /// `set` (the scene's own solver table is not used: every run names its
 /// solver).
 pub fn hertz(n: usize, set: impl FnMut(&mut Nitsche)) -> Result<Problem> {
-    Scene::shipped("hertz.toml")?
+    crate::shipped("hertz.toml")?
         .refined("disk", RefineSpec::iga(2, [n, n]))?
         .with_nitsche(set)
         .build()

@@ -3,17 +3,17 @@
 //! geometry (slave point, closest-point projection, normals and gap) drawn
 //! from the contact code itself.
 //!
-//! They are described with the public API of [`crate::report::plot`] only
+//! They are described with the public API of [`iga_contact::report::plot`] only
 //! (annotated geometry figures and charts of their own), so that this module
 //! does not depend on how plots are laid out or drawn.
 
-use crate::contact::ContactPoint;
-use crate::error::{Error, Result};
-use crate::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
-use crate::report::plot::{
+use iga_contact::contact::ContactPoint;
+use iga_contact::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
+use iga_contact::report::plot::{
     annotated_figure, chart, typographic_minus, Bounds, Chart, ChartLine, Color, Label, LabelSide,
     LegendEntry, LineKind, Polyline, Stroke, BLACK_INDEX,
 };
+use iga_contact::{Error, Result};
 use std::path::Path;
 
 // ---------------------------------------------------------------------------
@@ -265,8 +265,8 @@ fn arrow(tail: [f64; 2], dir: [f64; 2], len: f64, color: usize, label: &str) -> 
 }
 
 /// A sketch of the contact geometry of Eqs. (4)–(5) from contact points
-/// built by the contact code ([`crate::contact::contact_points`], which
-/// projects each slave point with [`crate::contact::projection::closest_point`]):
+/// built by the contact code ([`iga_contact::contact::contact_points`], which
+/// projects each slave point with [`iga_contact::contact::projection::closest_point`]):
 /// the slave and master curves, every point's projection ray (x¹ to
 /// x̄² = x¹ + g₀ n¹, thin), and for the point `highlight` the slave point
 /// x¹, its projection x̄², the master's outward normal n² there, the slave

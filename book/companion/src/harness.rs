@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 pub fn binary() -> &'static Path {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
     BIN.get_or_init(|| {
-        iga_contact::report::chapter::cli_binary().unwrap_or_else(|e| {
+        crate::cli_binary().unwrap_or_else(|e| {
             eprintln!("reliability: {e}");
             std::process::exit(2)
         })
@@ -264,7 +264,7 @@ pub fn commit() -> String {
     let git = |args: &[&str]| {
         std::process::Command::new("git")
             .args(args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .current_dir(crate::source_root())
             .output()
             .ok()
             .filter(|o| o.status.success())

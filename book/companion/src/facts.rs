@@ -11,12 +11,12 @@
 //! ```
 //!
 //! so a chapter writes `{{#include generated/hertz/facts.txt:p0_8x8}}`
-//! where the number goes. The crate's tests check that every such include
+//! where the number goes. The book's tests check that every such include
 //! names an existing fact, and the chapters' doc-tests read the same file
 //! ([`Facts::load`]) to assert the claims the prose makes about the numbers.
 
-use super::table::Format;
-use crate::error::{Error, Result};
+use iga_contact::report::table::Format;
+use iga_contact::{Error, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -99,7 +99,7 @@ impl Facts {
     ) -> Result<()> {
         for (name, (m, t)) in ["p0", "a"].iter().zip(measured.into_iter().zip(truth)) {
             let key = format!("{prefix}_{name}_vs_{against}");
-            self.number(&key, crate::post::relative(m, t), format)?;
+            self.number(&key, iga_contact::post::relative(m, t), format)?;
         }
         Ok(())
     }

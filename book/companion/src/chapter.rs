@@ -2,22 +2,33 @@
 //! what a chapter program writes — tables (CSV + Markdown), texts, figures
 //! and the facts its prose quotes.
 
-use super::atomic::{install_signal_cleanup, OutputSet};
-use super::facts::{self, Facts};
-use super::table::Table;
-use crate::error::{Error, Result};
+use crate::facts::{self, Facts};
+use iga_contact::report::atomic::{install_signal_cleanup, OutputSet};
+use iga_contact::report::table::Table;
+use iga_contact::{Error, Result};
 use std::path::{Path, PathBuf};
 
-/// The book's generated folders, in this crate's source tree.
+/// The root of the source tree this crate was built from (the workspace:
+/// `book/companion/` is two levels down), where the chapter programs read
+/// the shipped scenes and write the book's generated folders.
+pub fn source_root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .ancestors()
+        .nth(2)
+        .expect("book/companion sits two levels below the workspace root")
+}
+
+/// The book's generated folders, `book/src/generated/` of the source tree.
 pub fn generated_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/generated")
+    source_root().join("book/src/generated")
 }
 
 /// The `iga-contact` binary of this build, for chapter programs that show
 /// or probe the command line: `target/<profile>/iga-contact`, beside the
 /// folder of the running example. Refused when it is missing, or older than
-/// a source file of the crate — it would then not be the code the chapter
-/// describes (`cargo run --example` builds the examples, not the binary).
+/// a source file of the library or the binary — it would then not be the
+/// code the chapter describes (`cargo run --example` builds the examples,
+/// not the binary).
 pub fn cli_binary() -> Result<PathBuf> {
     let io = |path: &Path| {
         let path = path.display().to_string();
@@ -32,7 +43,7 @@ pub fn cli_binary() -> Result<PathBuf> {
     let built = std::fs::metadata(&bin)
         .and_then(|m| m.modified())
         .map_err(io(&bin))?;
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = source_root();
     let mut stack = vec![root.join("src"), root.join("Cargo.toml")];
     while let Some(path) = stack.pop() {
         let meta = std::fs::metadata(&path).map_err(io(&path))?;
@@ -61,7 +72,7 @@ pub enum Cost {
     /// which compare its output with the committed files.
     Quick,
     /// Minutes and gigabytes (a scaling benchmark, a fault-injection
-    /// campaign): run by `iga-contact reproduce --all`; the book states when
+    /// campaign): run by `reproduce --all`; the book states when
     /// its committed results were measured.
     Heavy,
 }

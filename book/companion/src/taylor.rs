@@ -1,6 +1,6 @@
 //! Measuring a Taylor patch-test solution against the exact homogeneous
-//! state. This file is also compiled by `tests/taylor.rs`, which checks
-//! that the measures notice a wrong field.
+//! state, for the Taylor chapter's program; `tests/taylor.rs` checks that
+//! the measures notice a wrong field.
 
 use iga_contact::assembly::{displacement_at, strain_at};
 use iga_contact::error::{Error, Result};
