@@ -381,7 +381,7 @@ fn point_supports_at_patch_corners_hold_the_body() {
 #[test]
 fn the_singular_corner_advice_is_the_four_patch_disk_and_following_it_clears_the_warning() {
     let heavy = |file: &str, n: usize, growth: iga_contact::solver::Growth| {
-        let mut scene = Scene::shipped(file)
+        let mut scene = companion::shipped(file)
             .unwrap()
             .refined("disk", RefineSpec::iga(2, [n, n]))
             .unwrap()

@@ -2,8 +2,7 @@
 //! checking that the error names the key path and the value), the shipped
 //! scenes, and lean, atomic output.
 
-#[path = "../examples/common/hertz.rs"]
-mod setup;
+use companion::hertz as setup;
 
 use iga_contact::post::{PressureProfile, PROFILE_SAMPLES_PER_ELEMENT};
 use iga_contact::report::atomic::{read_manifest, MANIFEST};
@@ -337,7 +336,7 @@ fn a_scene_without_outputs_writes_nothing() {
 #[test]
 fn a_run_below_the_stability_bound_reports_its_warning() {
     let dir = tmp("warned");
-    let mut scene = Scene::shipped("hertz.toml").unwrap();
+    let mut scene = companion::shipped("hertz.toml").unwrap();
     scene.nitsche_mut().for_each(|n| n.penalty_factor = 1e-3);
     scene.solver = SolverOptions::default();
     scene.output = Default::default();
@@ -356,7 +355,7 @@ fn a_run_below_the_stability_bound_reports_its_warning() {
     assert!(line.ends_with("no outputs requested"), "{line}");
     assert!(report.warnings[0].to_string().contains("stability bound"));
     // at the empirical penalty the same run carries no warning
-    let mut fine = Scene::shipped("hertz.toml").unwrap();
+    let mut fine = companion::shipped("hertz.toml").unwrap();
     fine.solver = SolverOptions::default();
     fine.output = Default::default();
     assert!(fine.run(&dir).unwrap().warnings.is_empty());

@@ -51,7 +51,6 @@ mod validate;
 
 pub use check::CheckReport;
 pub use geometry::{GeometrySpec, NurbsSpec};
-pub use parse::shipped_path;
 pub use refine::RefineSpec;
 pub use schema::{
     files, BodySpec, Component, ContactSpec, LoadSpec, MasterSpec, OutputSpec, Scene, SegmentSpec,

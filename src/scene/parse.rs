@@ -4,7 +4,7 @@
 
 use super::Scene;
 use crate::error::{Error, Result};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Shortens a value shown in an error message.
 fn shorten(s: String) -> String {
@@ -140,17 +140,4 @@ impl Scene {
         })?;
         Scene::from_toml_str(&text)
     }
-    /// A scene file shipped in `data/scenes/`: the paper's set-ups are
-    /// `taylor.toml` and `hertz.toml`.
-    pub fn shipped(file: &str) -> Result<Scene> {
-        Scene::load(shipped_path(file))
-    }
-}
-
-/// The path of a scene file shipped in `data/scenes/` (in this crate's
-/// source tree).
-pub fn shipped_path(file: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(file)
 }
