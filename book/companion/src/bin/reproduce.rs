@@ -74,9 +74,11 @@ fn reproduce(only: Option<String>, heavy: bool) -> Result<(), Failure> {
     // looking for them among the workspace's other members.
     let package = ["--package", "iga-contact", "--manifest-path"];
     // One build of every example first, so that the progress below is the
-    // programs' own running time.
+    // programs' own running time; and of the command line tool, which the
+    // chapters that show or probe it run (`cli_binary` refuses a missing or
+    // stale one, and `--examples` alone does not build it).
     let status = std::process::Command::new(&cargo)
-        .args(["build", "--release", "--examples"])
+        .args(["build", "--release", "--examples", "--bins"])
         .args(package)
         .arg(&manifest)
         .status();
