@@ -178,6 +178,10 @@ fn reproduce_is_not_a_command_of_the_binary() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let line = single_error_line(&o);
     assert!(line.contains("'reproduce'"), "{line}");
+    assert!(
+        line.contains("cargo run --release --bin reproduce"),
+        "{line}"
+    );
 }
 
 /// Every usage error is one `error:` line naming what is wrong (exit 2),

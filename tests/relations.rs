@@ -270,7 +270,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "scenes.md",
-        "Each rule has its own test in code",
+        "Each rule is a row of one table of refused scenes in code",
         "names the tests that enforce the rules",
     ),
     (
@@ -300,7 +300,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "scenes.md",
-        "and every chapter program write code the same way",
+        "Every chapter program writes its folder code the same way",
         "the chapter programs write through companion::chapter, which commits an OutputSet",
     ),
     (

@@ -2,7 +2,7 @@
 
 use super::table::{Cell, Column, Format, Table, Unit};
 use crate::error::Result;
-use crate::solver::history::History;
+use crate::history::History;
 
 /// One row per iteration: residual, relative residual, update, the largest
 /// displacement, active contact points and events, with residuals shown in

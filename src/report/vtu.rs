@@ -70,7 +70,7 @@ fn xml_escape(s: &str) -> String {
             '\t' | '\n' | '\r' => {
                 let _ = write!(out, "&#{};", c as u32);
             }
-            c if !crate::report::xml_char_allowed(c) => out.push('\u{FFFD}'),
+            c if !crate::report::xml::xml_char_allowed(c) => out.push('\u{FFFD}'),
             c => out.push(c),
         }
     }

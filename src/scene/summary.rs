@@ -2,9 +2,9 @@
 //! pressure-profile table to the output directory.
 
 use crate::error::Result;
+use crate::history::History;
 use crate::post::PressureProfile;
 use crate::report::table::{Column, Format, Table, Unit};
-use crate::solver::history::History;
 use crate::solver::{self, SolverOptions};
 use crate::timing::PhaseTimes;
 use serde::Serialize;

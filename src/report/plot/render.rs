@@ -92,7 +92,7 @@ pub(super) fn render(path: &Path, fig: &impl Figure) -> Result<()> {
         }
         // plotters escapes markup but passes control characters through,
         // which no XML reader accepts.
-        return write_atomic(path, crate::report::xml_safe(&svg).as_bytes());
+        return write_atomic(path, crate::report::xml::xml_safe(&svg).as_bytes());
     }
     // The bitmap backend can only encode to a file; render next to the target
     // and move the bytes through write_atomic like every other output.
