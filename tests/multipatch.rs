@@ -321,6 +321,12 @@ fn multi_patch_keys_are_checked_with_one_error_line() {
             "slave_boundary = \"rim\"",
             "contact[0].slave_boundary",
         ),
+        // a multi-patch body as master: refused with the swap as advice
+        (
+            "master = { rigid_segment = { from = [-0.2, 0.0], to = [0.4, 0.0] } }",
+            "master = { body = \"disk\", side = \"eta_min\" }",
+            "contact[0].master.body",
+        ),
         // a point support off the patch corners: the centre
         (
             "boundary = \"straight\"",
@@ -335,6 +341,9 @@ fn multi_patch_keys_are_checked_with_one_error_line() {
             .expect_err(to);
         let msg = e.to_string();
         assert!(msg.contains(field), "{to}: {msg}");
+        if field.ends_with("master.body") {
+            assert!(msg.contains("make the multi-patch body the slave"), "{msg}");
+        }
         assert!(!msg.contains('\n'), "{msg}");
     }
 }

@@ -163,6 +163,18 @@ impl Scene {
                 }
                 MasterSpec::Body { body: name, side } => {
                     let master = self.resolve(&names, format!("{f}.master.body"), name)?;
+                    if self.bodies[master].geometry.multipatch().is_some() {
+                        // The master's side is one patch side (`MasterSpec::Body`);
+                        // naming a boundary of several patches there is not built yet,
+                        // so the advice is the swap the contact pair does allow.
+                        return Err(Error::invalid(
+                            format!("{f}.master.body"),
+                            format!("{name:?}"),
+                            "a master body must be one patch: make the multi-patch body the \
+                             slave (`slave_boundary`) and the other the master, or give the \
+                             master a one-patch geometry",
+                        ));
+                    }
                     self.one_patch(master, &format!("{f}.master.side"), side.name())?;
                     if master == slave {
                         return Err(Error::invalid(
