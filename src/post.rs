@@ -94,7 +94,7 @@ pub fn dense_contact_points(problem: &Problem, per_element: usize) -> Result<Vec
             p
         })
         .collect();
-    checked_contact_points(&problem.bodies, &problem.map, &pairs)
+    checked_contact_points(&problem.bodies, &problem.map, &pairs, &problem.contacts)
 }
 
 impl PressureProfile {

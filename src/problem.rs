@@ -4,7 +4,7 @@
 
 use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load};
 use crate::contact::nitsche::{add_force, add_force_size_at, heaviside, local_matrix, Law};
-use crate::contact::{contact_points, ContactPair, ContactPoint};
+use crate::contact::{contact_points, ContactPair, ContactPoint, Contacts, Master};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::wellposed::{free_modes, RigidBasis};
@@ -29,6 +29,10 @@ pub struct Problem {
     pub bodies: Vec<Body>,
     pub map: DofMap,
     pub pairs: Vec<ContactPair>,
+    /// The contacts the pairs make up: each pair its own, unless
+    /// [`Problem::with_contacts`] joins the pieces of a slave boundary that
+    /// runs over several patches.
+    pub contacts: Contacts,
     /// The applied loads (body indices into `bodies`).
     pub loads: Vec<Load>,
     pub points: Vec<ContactPoint>,
@@ -121,12 +125,54 @@ impl Problem {
         Ok(Self {
             bodies,
             map,
+            contacts: Contacts::each_pair(pairs.len()),
             pairs,
             loads: loads.to_vec(),
             points,
             rhs,
             k,
         })
+    }
+
+    /// The problem with its pairs grouped into `contacts`, which must
+    /// cover them; the pieces of one contact must share its slave body,
+    /// its master and its parameters, since what is reported of a
+    /// contact is taken from its first piece.
+    pub fn with_contacts(mut self, contacts: Contacts) -> Result<Self> {
+        if contacts.pairs() != self.pairs.len() {
+            return Err(Error::invalid(
+                "contacts",
+                format!("{} pairs", contacts.pairs()),
+                format!("the problem has {} contact pairs", self.pairs.len()),
+            ));
+        }
+        for (c, pieces) in contacts.iter() {
+            let first = &self.pairs[pieces.start];
+            let group = self.map.group(first.slave);
+            for k in pieces {
+                let pair = &self.pairs[k];
+                // (a rigid master is one curve given once per contact)
+                let same_master = match (&pair.master, &first.master) {
+                    (Master::Rigid(_), Master::Rigid(_)) => true,
+                    (Master::Body { body: a, side: s }, Master::Body { body: b, side: t }) => {
+                        a == b && s == t
+                    }
+                    _ => false,
+                };
+                if self.map.group(pair.slave) != group
+                    || !same_master
+                    || pair.nitsche != first.nitsche
+                {
+                    return Err(Error::invalid(
+                        format!("contact[{c}]"),
+                        format!("pair {k}"),
+                        "the pieces of a contact share its slave body, master and parameters",
+                    ));
+                }
+            }
+        }
+        self.contacts = contacts;
+        Ok(self)
     }
 
     fn require_free_dofs(map: &DofMap) -> Result<()> {

@@ -260,7 +260,7 @@ fn run(file: &str, n: usize, factor: f64) -> (f64, f64, usize, Vec<Warning>) {
     let sol =
         solve(&problem, &scene.solver).unwrap_or_else(|e| panic!("{file} {n} ×{factor}: {e}"));
     let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
-    let m = profile.measures_joined(scene.pair_ranges()[0].clone());
+    let m = profile.measures_joined(problem.contacts.pieces(0));
     (m.p0, m.half_width, m.zones, sol.warnings)
 }
 
@@ -404,7 +404,7 @@ fn the_singular_corner_advice_is_the_four_patch_disk_and_following_it_clears_the
         let problem = scene.build().unwrap();
         let sol = solve(&problem, &scene.solver).unwrap();
         let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
-        let m = profile.measures_joined(scene.pair_ranges()[0].clone());
+        let m = profile.measures_joined(problem.contacts.pieces(0));
         (m.p0, m.zones, sol.warnings)
     };
     use iga_contact::solver::Growth;
@@ -427,4 +427,90 @@ fn the_singular_corner_advice_is_the_four_patch_disk_and_following_it_clears_the
     // measured 0.13 %: the meshes differ away from the zone; the corner's
     // root on one patch was 4.6 % below, so 0.5 % tells the two apart
     assert!(rel(p0, reference) < 5e-3, "p₀ {p0} against {reference}");
+}
+
+/// The shipped multi-patch Hertz scene, checked and run: a slave boundary
+/// over two patches is one contact, so every warning names `contact[0]`
+/// (the only `[[contact]]` of the file, whose key the advice sets), check
+/// counts the scene's one body (not its four patches), and the penalty
+/// where the bodies first touch is judged over the whole boundary (the
+/// second piece's least gap, at the join, is no place of first touch).
+#[test]
+fn warnings_of_a_boundary_over_several_patches_name_its_one_contact() {
+    let scene = companion::shipped("hertz_multipatch.toml").unwrap();
+    let report = scene
+        .check(&iga_contact::resources::Budget::from_machine())
+        .unwrap();
+    assert_eq!(report.bodies, 1);
+    let problem = scene.build().unwrap();
+    assert_eq!(problem.pairs.len(), 2);
+    assert_eq!(problem.contacts.len(), 1);
+    let sol = solve(&problem, &scene.solver).unwrap();
+    let mut first_touch = 0;
+    for w in report.warnings.iter().chain(&sol.warnings) {
+        let text = w.to_string();
+        assert!(text.starts_with("contact[0]"), "{text}");
+        assert!(!text.contains("contact[1]"), "{text}");
+        first_touch += usize::from(report.warnings.contains(w));
+    }
+    // one penalty warning before the solve, for the one contact
+    assert!(first_touch <= 1, "{:?}", report.warnings);
+}
+
+/// A slave boundary of one patch side that ends where the body's boundary
+/// goes on smoothly on the next patch: under sixteen times the load the
+/// zone reaches that end (315° on the four-patch half disk) and is cut off
+/// there, which is warned, with advice (a `slave_boundary` of more of the
+/// body's patches) that, followed, clears the warning and lets the zone
+/// grow past the join.
+#[test]
+fn a_zone_cut_at_the_end_of_a_one_patch_piece_is_warned_and_the_advice_clears_it() {
+    let cut = |boundary: &str| {
+        let mut scene = companion::shipped("hertz_multipatch.toml")
+            .unwrap()
+            .with_nitsche(|x| {
+                // the sharp penalty keeps every element above its bound, so
+                // that no penalty warning stands in for this one
+                x.penalty = iga_contact::contact::Penalty::Sharp;
+                x.penalty_factor = 2.0;
+            });
+        scene.contacts[0].slave_boundary = Some(boundary.into());
+        for l in &mut scene.loads {
+            if let assembly::Load::BodyForce { force, .. } = l {
+                force[1] *= 16.0;
+            }
+        }
+        let problem = scene.build().unwrap();
+        let sol = solve(&problem, &scene.solver).unwrap();
+        let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
+        let m = profile.measures_joined(problem.contacts.pieces(0));
+        (m.half_width, sol.warnings)
+    };
+    let (a_cut, w) = cut("arc_bottom");
+    let side_end: Vec<&Warning> = w
+        .iter()
+        .filter(|w| matches!(w, Warning::ZoneAtSideEnd { .. }))
+        .collect();
+    assert!(
+        matches!(
+            side_end[..],
+            [Warning::ZoneAtSideEnd {
+                contact: 0,
+                extent: iga_contact::solver::warning::SlaveExtent::Boundary,
+                end: iga_contact::solver::warning::SideEnd::End,
+                singular: false,
+                ..
+            }]
+        ),
+        "{w:?}"
+    );
+    assert!(side_end[0].to_string().contains("slave_boundary"));
+    let (a, w) = cut("arc_lower");
+    assert!(
+        !w.iter().any(|w| matches!(w, Warning::ZoneAtSideEnd { .. })),
+        "{w:?}"
+    );
+    // the join at 315°, where the one-piece boundary ends
+    let join = R * std::f64::consts::FRAC_1_SQRT_2;
+    assert!(a > join && a > a_cut, "{a} against {a_cut} and {join}");
 }

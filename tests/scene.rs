@@ -343,7 +343,7 @@ fn a_run_below_the_stability_bound_reports_its_warning() {
     let report = scene.run(&dir).unwrap();
     assert!(matches!(
         report.warnings.as_slice(),
-        [solver::Warning::PenaltyBelowBound { pair: 0, .. }]
+        [solver::Warning::PenaltyBelowBound { contact: 0, .. }]
     ));
     let line = report.to_string();
     assert!(!line.contains('\n') && !line.contains("warning"), "{line}");
@@ -869,6 +869,20 @@ fn rejected() -> Vec<Reject> {
             "contact[0].master.rigid_segment.to",
             "[0.5, 0.5]",
         ),
+        // a floor from right to left is a ceiling: the slave lies inside it
+        reject(
+            master("{ rigid_segment = { from = [2.0, 0.5], to = [-1.0, 0.5] } }"),
+            "contact[0].master",
+            "body \"upper\" against its master",
+        )
+        .says(&["points away from the master", "swap `from` and `to`"]),
+        // the lower block's bottom faces away from the upper block
+        reject(
+            master("{ body = \"lower\", side = \"eta_min\" }"),
+            "contact[0]",
+            "body \"upper\" against its master",
+        )
+        .says(&["face each other"]),
         reject(
             format!(
                 "{}\n[[contact]]\nslave = \"b\"\nslave_side = \"eta_max\"\n\

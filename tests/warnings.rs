@@ -195,10 +195,13 @@ fn locking_is_warned_and_the_advised_refinement_fixes_it() {
     // plane stress does not lock: no warning at any ν
     let mut stress = nearly(16);
     stress.body_mut("disk").unwrap().material.plane = iga_contact::material::Plane::Stress;
-    assert!(
-        iga_contact::solver::warning::setup_warnings(&stress.build().unwrap().bodies, &[])
-            .is_empty()
-    );
+    let problem = stress.build().unwrap();
+    assert!(iga_contact::solver::warning::setup_warnings(
+        &problem.bodies,
+        &problem.pairs,
+        &problem.contacts
+    )
+    .is_empty());
 }
 
 /// Under eight times the load (penalty factor 2, which keeps every regular

@@ -2,6 +2,7 @@
 //! the closest-point projection, the empirical penalty (11), and the
 //! residual and matrices of Eq. (9), (13), (17)–(19).
 
+pub mod contacts;
 pub mod nitsche;
 pub mod pair;
 pub mod params;
@@ -10,5 +11,6 @@ pub mod point;
 pub mod projection;
 pub mod stability;
 
+pub use contacts::Contacts;
 pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
 pub use params::{Integration, Modulus, Nitsche, Penalty, Sides, Theta};

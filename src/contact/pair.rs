@@ -1,6 +1,7 @@
 //! Contact pairs and their quadrature points: everything about a point of
 //! Γc that does not depend on the displacement (small deformation).
 
+use super::contacts::Contacts;
 use super::params::{Integration, Modulus, Nitsche, Penalty, Sides};
 use super::penalty::{
     empirical_penalty, rigid_modes, sharp_penalty, trace_constant, PenaltyInputs,
@@ -112,22 +113,44 @@ pub fn contact_points(
     for (ip, pair) in pairs.iter().enumerate() {
         validate(pair, ip, bodies)?;
     }
-    checked_contact_points(bodies, map, pairs)
+    checked_contact_points(bodies, map, pairs, &Contacts::each_pair(pairs.len()))
+}
+
+/// A pair's index among the pairs, which its points record, and that of
+/// the contact it is a piece of, which messages name.
+#[derive(Clone, Copy, Debug)]
+struct PairId {
+    pair: usize,
+    contact: usize,
 }
 
 /// [`contact_points`] of pairs already checked: built by a validated scene,
 /// or taken from a [`crate::problem::Problem`], whose construction checked
-/// them. A second check would only repeat the first.
+/// them. A second check would only repeat the first. Messages name the
+/// contacts of `contacts`, and a contact whose slave faces away from its
+/// master at every point, closed at one at least, is refused.
 pub(crate) fn checked_contact_points(
     bodies: &[Body],
     map: &DofMap,
     pairs: &[ContactPair],
+    contacts: &Contacts,
 ) -> Result<Vec<ContactPoint>> {
     let mut out = Vec::new();
+    // per point: whether the slave's outward normal has a positive
+    // component along n¹, towards the master
+    let mut facing = Vec::new();
     for (ip, pair) in pairs.iter().enumerate() {
+        let id = PairId {
+            pair: ip,
+            contact: contacts.of(ip),
+        };
+        let mut sink = Sink {
+            points: &mut out,
+            facing: &mut facing,
+        };
         match (&pair.master, pair.nitsche.sides) {
             (Master::Body { body, side }, Sides::Unbiased) => {
-                one_side(bodies, map, ip, pair, Role::Slave, 0.5, &mut out)?;
+                one_side(bodies, map, id, pair, Role::Slave, 0.5, &mut sink)?;
                 let mirrored = ContactPair {
                     slave: *body,
                     slave_side: *side,
@@ -137,23 +160,72 @@ pub(crate) fn checked_contact_points(
                     },
                     nitsche: pair.nitsche,
                 };
-                one_side(bodies, map, ip, &mirrored, Role::Master, 0.5, &mut out)?;
+                one_side(bodies, map, id, &mirrored, Role::Master, 0.5, &mut sink)?;
             }
-            _ => one_side(bodies, map, ip, pair, Role::Slave, 1.0, &mut out)?,
+            _ => one_side(bodies, map, id, pair, Role::Slave, 1.0, &mut sink)?,
+        }
+    }
+    for (c, pieces) in contacts.iter() {
+        let slave_points =
+            (0..out.len()).filter(|&q| pieces.contains(&out[q].pair) && out[q].role == Role::Slave);
+        // facing away but open everywhere, the contact can never close (a
+        // floor beyond the far side of the body): inert, not wrong
+        let (mut any, mut away, mut closed) = (false, true, false);
+        for q in slave_points {
+            any = true;
+            away &= !facing[q];
+            closed |= out[q].g0 <= 0.0;
+        }
+        if any && away && closed {
+            return Err(facing_away(c, &pairs[pieces.start], bodies));
         }
     }
     Ok(out)
+}
+
+/// Where [`one_side`] puts its points, and whether each faces its master.
+struct Sink<'a> {
+    points: &'a mut Vec<ContactPoint>,
+    facing: &'a mut Vec<bool>,
+}
+
+/// The error of contact `c`, first piece `pair`, whose slave faces away
+/// from the master at every point and starts closed somewhere: the gap is
+/// measured through the slave body, so no contact of the two surfaces is
+/// modelled (a floor drawn from right to left is a ceiling over the body).
+fn facing_away(c: usize, pair: &ContactPair, bodies: &[Body]) -> Error {
+    let slave = &bodies[pair.slave].name;
+    let (field, advice) = match pair.master {
+        Master::Rigid(_) => (
+            format!("contact[{c}].master"),
+            "the obstacle lies on the right of the curve's direction (a rigid_segment from \
+             left to right is a floor): swap `from` and `to`, or name the slave side that \
+             faces the obstacle",
+        ),
+        Master::Body { .. } => (
+            format!("contact[{c}]"),
+            "name the slave side (or boundary) and the master side that face each other",
+        ),
+    };
+    Error::invalid(
+        field,
+        format!("body {slave:?} against its master"),
+        format!(
+            "at every contact point the slave's outward normal points away from the master, \
+             so the gap would be measured through the slave body: {advice}"
+        ),
+    )
 }
 
 /// The points of `pair` on its slave side, weights scaled by `scale`.
 fn one_side(
     bodies: &[Body],
     map: &DofMap,
-    ip: usize,
+    id: PairId,
     pair: &ContactPair,
     role: Role,
     scale: f64,
-    out: &mut Vec<ContactPoint>,
+    sink: &mut Sink,
 ) -> Result<()> {
     let slave = &bodies[pair.slave];
     let master = match &pair.master {
@@ -186,10 +258,10 @@ fn one_side(
     let cuts = match pair.nitsche.integration {
         Integration::Gauss => Vec::new(),
         Integration::Segment => projected_master_knots(master.curve(), &slave_curve)
-            .map_err(|e| within(e, ip, &slave_side(pair, bodies)))?,
+            .map_err(|e| within(e, id, &slave_side(pair, bodies)))?,
     };
     for be in slave.space.boundary(pair.slave_side) {
-        let first = out.len();
+        let first = sink.points.len();
         let mut breaks = vec![be.range[0]];
         let eps = 1e-10 * (be.range[1] - be.range[0]);
         breaks.extend(
@@ -205,8 +277,8 @@ fn one_side(
                     t,
                     w: scale * w,
                 };
-                if let Some(cp) = make_point(
-                    ip,
+                if let Some((cp, faces)) = make_point(
+                    id,
                     pair,
                     role,
                     bodies,
@@ -217,7 +289,8 @@ fn one_side(
                     degree,
                     pressure.as_ref(),
                 )? {
-                    out.push(cp);
+                    sink.points.push(cp);
+                    sink.facing.push(faces);
                 }
             }
         }
@@ -226,7 +299,7 @@ fn one_side(
             &be,
             &pair.nitsche,
             pressure.as_deref(),
-            &mut out[first..],
+            &mut sink.points[first..],
         )?;
     }
     Ok(())
@@ -367,10 +440,11 @@ fn slave_side(pair: &ContactPair, bodies: &[Body]) -> String {
     )
 }
 
-/// A geometry error of contact pair `ip`, told as happening on `what`.
-fn within(e: Error, ip: usize, what: &str) -> Error {
+/// A geometry error of the contact of pair `id`, told as happening on
+/// `what`.
+fn within(e: Error, id: PairId, what: &str) -> Error {
     match e {
-        Error::Geometry(m) => Error::Geometry(format!("contact[{ip}]: {what}: {m}")),
+        Error::Geometry(m) => Error::Geometry(format!("contact[{}]: {what}: {m}", id.contact)),
         other => other,
     }
 }
@@ -393,9 +467,12 @@ fn projected_master_knots(master: &NurbsCurve, slave: &NurbsCurve) -> Result<Vec
     Ok(out)
 }
 
+/// The contact point of `pair` at a sample of its slave side, if the
+/// master faces it, with whether the slave's outward normal points towards
+/// the master there.
 #[allow(clippy::too_many_arguments)]
 fn make_point(
-    ip: usize,
+    id: PairId,
     pair: &ContactPair,
     role: Role,
     bodies: &[Body],
@@ -405,12 +482,12 @@ fn make_point(
     young: f64,
     degree: usize,
     pressure: Option<&Arc<SplinePressure>>,
-) -> Result<Option<ContactPoint>> {
+) -> Result<Option<(ContactPoint, bool)>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
     let (shape, own_normal, len) = space
         .side_shape(be, t)
-        .map_err(|e| within(e, ip, &slave_side(pair, bodies)))?;
+        .map_err(|e| within(e, id, &slave_side(pair, bodies)))?;
     let x = shape.x;
     // The mirrored half of the unbiased form measures the gap of the other
     // half: along its own normal, to the point of the other body on that
@@ -430,7 +507,7 @@ fn make_point(
                 bodies[*body].name
             ),
         };
-        within(e, ip, &what)
+        within(e, id, &what)
     })?;
     if !pr.orthogonal {
         return Ok(None);
@@ -525,22 +602,26 @@ fn make_point(
         }
     }
     let regular = regular_map(&space.patch, pair.slave_side, be.range);
-    Ok(Some(ContactPoint {
-        pair: ip,
-        role,
-        x,
-        t,
-        normal,
-        g0,
-        gamma,
-        trace_constant: 0.0, // set per slave element by `set_trace_constant`
-        theta: pair.nitsche.theta.value(),
-        weight: w * len,
-        dofs,
-        sn,
-        jn,
-        regular,
-    }))
+    let faces = own_normal[0] * normal[0] + own_normal[1] * normal[1] > 0.0;
+    Ok(Some((
+        ContactPoint {
+            pair: id.pair,
+            role,
+            x,
+            t,
+            normal,
+            g0,
+            gamma,
+            trace_constant: 0.0, // set per slave element by `set_trace_constant`
+            theta: pair.nitsche.theta.value(),
+            weight: w * len,
+            dofs,
+            sn,
+            jn,
+            regular,
+        },
+        faces,
+    )))
 }
 
 /// The fraction of det J at the middle of a boundary element below which

@@ -7,6 +7,7 @@
 //! "small γ₀" there means a large γ here; GetFEM's Nitsche contact brick
 //! takes a stiffness γ₀ in Pa and forms γ₀/h, like this γ.)
 
+use super::contacts::Contacts;
 use super::point::ContactPoint;
 pub use super::stability::stability_bound;
 use crate::error::Result;
@@ -184,6 +185,31 @@ impl PenaltyStability {
             .map(|r| factor / r)
     }
 
+    /// The counts of `self` and `other` together: the stability of a
+    /// contact from that of its pieces.
+    pub fn merge(self, other: Self) -> Self {
+        let least = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let most = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        Self {
+            points: self.points + other.points,
+            below: self.below + other.below,
+            active: self.active + other.active,
+            active_below: self.active_below + other.active_below,
+            min_active_ratio: least(self.min_active_ratio, other.min_active_ratio),
+            active_over: self.active_over + other.active_over,
+            max_active_scale: most(self.max_active_scale, other.max_active_scale),
+            min_active_scale: least(self.min_active_scale, other.min_active_scale),
+            inactive_below: self.inactive_below + other.inactive_below,
+            min_inactive_ratio: least(self.min_inactive_ratio, other.min_inactive_ratio),
+        }
+    }
+
     /// The smallest γ over the bound that applies, active and inactive
     /// points together.
     pub fn min_ratio(&self) -> Option<f64> {
@@ -244,15 +270,23 @@ pub fn stability_of(
 /// as the degenerate corner of the nine-point disk) touch only under a load
 /// that closes their gap.
 pub fn first_touch(points: &[ContactPoint], pairs: usize) -> Vec<bool> {
-    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); pairs];
+    first_touch_of(points, &Contacts::each_pair(pairs))
+}
+
+/// As [`first_touch`], over each contact of `contacts` as a whole: where
+/// a slave boundary runs over several patches, the least gap of a piece
+/// far from the touch (at its join with the next) is no place of first
+/// touch.
+pub fn first_touch_of(points: &[ContactPoint], contacts: &Contacts) -> Vec<bool> {
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY); contacts.len()];
     for cp in points {
-        let r = &mut range[cp.pair];
+        let r = &mut range[contacts.of(cp.pair)];
         *r = (r.0.min(cp.g0), r.1.max(cp.g0));
     }
     points
         .iter()
         .map(|cp| {
-            let (lo, hi) = range[cp.pair];
+            let (lo, hi) = range[contacts.of(cp.pair)];
             cp.g0 <= lo + 1e-6 * (hi - lo)
         })
         .collect()

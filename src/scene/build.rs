@@ -7,7 +7,7 @@ use super::validate::Valid;
 use super::{MasterSpec, Scene};
 use crate::assembly::Load;
 use crate::contact::pair::checked_contact_points;
-use crate::contact::{ContactPair, Master};
+use crate::contact::{ContactPair, Contacts, Master};
 use crate::dofs::{Body, DofMap};
 use crate::error::{Error, Result};
 use crate::geometry;
@@ -34,6 +34,8 @@ pub(super) struct Discrete {
     pub(super) map: DofMap,
     pub(super) loads: Vec<Load>,
     pub(super) pairs: Vec<ContactPair>,
+    /// The `[[contact]]` entries the pairs make up, in order.
+    pub(super) contacts: Contacts,
 }
 
 /// True if every control point of `side` coincides with the first: the
@@ -184,6 +186,7 @@ impl Valid<'_> {
             }
         }
         let mut pairs = Vec::with_capacity(self.contacts.len());
+        let mut sizes = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let pieces = match (c.slave_side, &c.slave_boundary) {
                 (Some(side), _) => {
@@ -222,6 +225,7 @@ impl Valid<'_> {
                     Master::Body { body, side }
                 }
             };
+            sizes.push(pieces.len());
             for (slave, slave_side) in pieces {
                 pairs.push(ContactPair {
                     slave,
@@ -236,6 +240,7 @@ impl Valid<'_> {
             map,
             loads,
             pairs,
+            contacts: Contacts::of_sizes(&sizes)?,
         })
     }
 
@@ -249,9 +254,10 @@ impl Valid<'_> {
             map,
             loads,
             pairs,
+            contacts,
         } = self.discretise(MapCheck::OnFailure)?;
         clock.lap(Phase::ParseAndBuild);
-        let points = checked_contact_points(&bodies, &map, &pairs)
+        let points = checked_contact_points(&bodies, &map, &pairs, &contacts)
             .and_then(|points| {
                 wellposed::check_rigid_modes(&bodies, &map, &points)?;
                 Ok(points)
@@ -259,6 +265,7 @@ impl Valid<'_> {
             .map_err(|e| self.map_error_or(e))?;
         clock.lap(Phase::ContactSetup);
         let problem = Problem::with_points(bodies, map, &loads, pairs, points)
+            .and_then(|p| p.with_contacts(contacts))
             .map_err(|e| self.map_error_or(e))?;
         clock.lap(Phase::Assembly);
         Ok(problem)

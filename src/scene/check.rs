@@ -52,11 +52,12 @@ impl Scene {
         let estimate = valid.estimate()?;
         estimate.check(budget, "output.vtu_subdivisions")?;
         let d = valid.discretise(MapCheck::EveryPoint)?;
-        let points = checked_contact_points(&d.bodies, &d.map, &d.pairs)?;
+        let points = checked_contact_points(&d.bodies, &d.map, &d.pairs, &d.contacts)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
-        let warnings = solver::warning::before_solve(&d.bodies, &d.pairs, &points);
+        let warnings = solver::warning::before_solve(&d.bodies, &d.pairs, &d.contacts, &points);
         Ok(CheckReport {
-            bodies: d.bodies.len(),
+            // the scene's bodies, not their patches
+            bodies: self.bodies.len(),
             dofs: d.map.n_free(),
             contact_points: points.len(),
             estimate,

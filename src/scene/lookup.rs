@@ -66,30 +66,6 @@ impl Scene {
         })
     }
 
-    /// The contact pairs of every `[[contact]]`, in order: one for a
-    /// slave side, one per piece of a slave boundary.
-    pub fn pair_ranges(&self) -> Vec<std::ops::Range<usize>> {
-        let mut at = 0;
-        self.contacts
-            .iter()
-            .map(|c| {
-                let n = match (&c.slave_boundary, c.slave.as_str()) {
-                    (Some(name), slave) => self
-                        .bodies
-                        .iter()
-                        .find(|b| b.name == slave)
-                        .and_then(|b| b.geometry.multipatch())
-                        .and_then(|mp| mp.ok())
-                        .and_then(|mp| mp.boundary(name).map(<[_]>::len))
-                        .unwrap_or(1),
-                    (None, _) => 1,
-                };
-                at += n;
-                at - n..at
-            })
-            .collect()
-    }
-
     /// Refuses a patch side on body `b` when it has several patches.
     pub(super) fn one_patch(&self, b: usize, field: &str, side: &str) -> Result<()> {
         match self.bodies[b].geometry.multipatch() {

@@ -139,9 +139,10 @@ impl Scene {
             (Some(_), Some(profile)) => {
                 let forces = post::contact_resultants(problem, full);
                 // one entry per [[contact]], over the pairs of its pieces
-                self.pair_ranges()
-                    .into_iter()
-                    .map(|r| {
+                problem
+                    .contacts
+                    .iter()
+                    .map(|(_, r)| {
                         let m = profile.measures_joined(r.clone());
                         let f = forces[r.clone()]
                             .iter()
@@ -165,13 +166,13 @@ impl Scene {
         };
         clock.lap(Phase::PostProcessing);
         if let (true, Some(profile)) = (o.figures, &profile) {
-            let pairs = self.contacts.len();
-            let ranges = self.pair_ranges();
+            let pairs = problem.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
                 .map(|k| {
                     // where the map is singular the bracket is not a pressure
-                    let points = ranges[k]
-                        .clone()
+                    let points = problem
+                        .contacts
+                        .pieces(k)
                         .flat_map(|r| profile.pair(r))
                         .filter(|p| p.regular)
                         .map(|p| (p.x[0], p.pressure()))

@@ -37,7 +37,10 @@ pub(crate) fn settle(
         }
         Status::Converged => false,
         Status::Stalled => true,
-        Status::Failed(halt) => return Some(Err(failure(sys, problem, u, &halt, history))),
+        Status::Failed(halt) => {
+            let start = tracker.opts.start;
+            return Some(Err(failure(sys, problem, u, &halt, start, history)));
+        }
     };
     Some(Ok(Attempt {
         u: std::mem::take(u),

@@ -92,6 +92,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
                 problem,
                 &attempt.u,
                 &Halt::Stalled,
+                start,
                 history,
             ));
         }

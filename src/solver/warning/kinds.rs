@@ -60,7 +60,7 @@ pub enum Counted {
 /// The one change a penalty warning advises.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PenaltyRemedy {
-    /// Set the pair's `penalty_factor` to this value.
+    /// Set the contact's `penalty_factor` to this value.
     Factor(f64),
     /// Set `penalty = "sharp"` with this safety factor: one factor cannot
     /// fit elements whose bounds differ this much.
@@ -77,15 +77,24 @@ pub enum SideEnd {
     End,
 }
 
+/// Where on its body a contact's slave boundary lies: one side of a
+/// one-patch body, or sides of a body of several patches, whose boundary
+/// can go on past the end of one patch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlaveExtent {
+    Side(&'static str),
+    Boundary,
+}
+
 /// Something a converged solve reports about its answer: it solves the
 /// discrete equations, but may not be the contact solution the user wants.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Warning {
-    /// Active points of contact pair `pair` whose penalty lies below the
+    /// Active points of contact `contact` whose penalty lies below the
     /// stability bound of their element: the tangent need not be coercive
     /// on this active set, so the root found need not be the only one.
     PenaltyBelowBound {
-        pair: usize,
+        contact: usize,
         below: usize,
         active: usize,
         /// Inactive points below θ C_T (θ > 0: their −(θ/γ) w σ_n σ_nᵀ stays
@@ -96,13 +105,13 @@ pub enum Warning {
         counted: Counted,
         remedy: PenaltyRemedy,
     },
-    /// Active points of pair `pair` whose penalty exceeds [`OVER_PENALTY`]
+    /// Active points of contact `contact` whose penalty exceeds [`OVER_PENALTY`]
     /// times the θ = 0 bound of their element: there p₀ was measured to
     /// grow with the penalty (Hertz 8×8, see [`OVER_PENALTY`]); that the
     /// contact over-constrains the mesh is the usual explanation, not
     /// tested.
     PenaltyFarAboveBound {
-        pair: usize,
+        contact: usize,
         over: usize,
         active: usize,
         /// The largest γ / (θ = 0 bound) over the active points.
@@ -110,22 +119,22 @@ pub enum Warning {
         counted: Counted,
         remedy: PenaltyRemedy,
     },
-    /// θ = −1 with active points of pair `pair` whose penalty is below
+    /// θ = −1 with active points of contact `contact` whose penalty is below
     /// [`LOOSE_PENALTY`] times the θ = 0 bound of their element: stable, but
     /// the gap condition is held so loosely that p₀ may be off by a few
     /// percent on a coarse mesh.
     PenaltyLoose {
-        pair: usize,
+        contact: usize,
         active: usize,
         /// The smallest γ / (θ = 0 bound) over the active points.
         min_ratio: f64,
         counted: Counted,
         remedy: PenaltyRemedy,
     },
-    /// The slave of pair `pair` is more than [`STIFFER_SLAVE`] times
+    /// The slave of contact `contact` is more than [`STIFFER_SLAVE`] times
     /// stiffer than its master.
     StifferSlave {
-        pair: usize,
+        contact: usize,
         slave: String,
         master: String,
         contrast: f64,
@@ -143,28 +152,28 @@ pub enum Warning {
         /// [`LOCKING`].
         elements: usize,
     },
-    /// The contact zone of pair `pair` runs to an end of its slave side
+    /// The contact zone of contact `contact` runs to an end of its slave side
     /// where the body's boundary goes on smoothly, and the master goes on
     /// beyond it: the contact surface is cut off there.
     ZoneAtSideEnd {
-        pair: usize,
-        /// Body and side name of the slave side, for the advice.
+        contact: usize,
+        /// The slave body and where on it the contact lies, for the advice.
         slave: String,
-        side: &'static str,
+        extent: SlaveExtent,
         end: SideEnd,
         at: [f64; 2],
         /// Whether the slave's map is singular at that end (det J = 0, as
         /// at the degenerate corner of the nine-point disk).
         singular: bool,
     },
-    /// The contact zone of pair `pair` rests on fewer than [`RESOLVED`]
+    /// The contact zone of contact `contact` rests on fewer than [`RESOLVED`]
     /// active points, or on the points of a single slave element: the mesh
     /// does not resolve it, and measures of the pressure (its peak, its
     /// width) are set by the quadrature spacing, the penalty and one
     /// element's polynomial rather than by the load (measured: Hertz p = 5
     /// on one element, three active points, p₀ twice the reference).
     UnresolvedContact {
-        pair: usize,
+        contact: usize,
         active: usize,
         elements: usize,
     },
@@ -175,8 +184,8 @@ impl Warning {
     /// concern the iteration itself (a penalty below its bound).
     pub fn note(&self) -> Option<String> {
         match self {
-            Warning::PenaltyBelowBound { pair, below, .. } => Some(format!(
-                "penalty below bound: contact[{pair}], {below} points"
+            Warning::PenaltyBelowBound { contact, below, .. } => Some(format!(
+                "penalty below bound: contact[{contact}], {below} points"
             )),
             _ => None,
         }
@@ -190,8 +199,8 @@ fn counted_words(c: Counted) -> &'static str {
     }
 }
 
-fn remedy_words(pair: usize, r: PenaltyRemedy) -> String {
-    let key = format!("contact[{pair}].nitsche");
+fn remedy_words(contact: usize, r: PenaltyRemedy) -> String {
+    let key = format!("contact[{contact}].nitsche");
     match r {
         PenaltyRemedy::Factor(f) => format!("set {key}.penalty_factor = {}", round2(f)),
         PenaltyRemedy::Sharp(f) => {
@@ -222,7 +231,7 @@ impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Warning::PenaltyBelowBound {
-                pair,
+                contact,
                 below,
                 active,
                 inactive_below,
@@ -232,7 +241,7 @@ impl std::fmt::Display for Warning {
             } => {
                 write!(
                     f,
-                    "contact[{pair}]: {below} of the {active} {} {} a penalty below the stability bound of their element",
+                    "contact[{contact}]: {below} of the {active} {} {} a penalty below the stability bound of their element",
                     counted_words(*counted),
                     if *below == 1 { "has" } else { "have" }
                 )?;
@@ -249,11 +258,11 @@ impl std::fmt::Display for Warning {
                 write!(
                     f,
                     ", so the solution need not be unique: {}",
-                    remedy_words(*pair, *remedy)
+                    remedy_words(*contact, *remedy)
                 )
             }
             Warning::PenaltyFarAboveBound {
-                pair,
+                contact,
                 over,
                 active,
                 max_ratio,
@@ -261,32 +270,32 @@ impl std::fmt::Display for Warning {
                 remedy,
             } => write!(
                 f,
-                "contact[{pair}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of their element (largest γ/bound {max_ratio:.3}); above that ratio the peak pressure was measured to grow with the penalty: {}",
+                "contact[{contact}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of their element (largest γ/bound {max_ratio:.3}); above that ratio the peak pressure was measured to grow with the penalty: {}",
                 counted_words(*counted),
                 if *over == 1 { "has" } else { "have" },
-                remedy_words(*pair, *remedy)
+                remedy_words(*contact, *remedy)
             ),
             Warning::PenaltyLoose {
-                pair,
+                contact,
                 active,
                 min_ratio,
                 counted,
                 remedy,
             } => write!(
                 f,
-                "contact[{pair}]: θ = -1 with a penalty down to {} times the θ = 0 stability bound at its {active} {}, which holds the gap too loosely for an accurate p₀ on a coarse mesh: {}",
+                "contact[{contact}]: θ = -1 with a penalty down to {} times the θ = 0 stability bound at its {active} {}, which holds the gap too loosely for an accurate p₀ on a coarse mesh: {}",
                 round2(*min_ratio),
                 counted_words(*counted),
-                remedy_words(*pair, *remedy)
+                remedy_words(*contact, *remedy)
             ),
             Warning::StifferSlave {
-                pair,
+                contact,
                 slave,
                 master,
                 contrast,
             } => write!(
                 f,
-                "contact[{pair}]: the slave {slave:?} is {contrast:.3} times stiffer than the master {master:?}, and the penalty scales with the slave's modulus, so it over-penalises the softer body: make {master:?} the slave and {slave:?} the master"
+                "contact[{contact}]: the slave {slave:?} is {contrast:.3} times stiffer than the master {master:?}, and the penalty scales with the slave's modulus, so it over-penalises the softer body: make {master:?} the slave and {slave:?} the master"
             ),
             Warning::NearlyIncompressible {
                 body,
@@ -310,18 +319,22 @@ impl std::fmt::Display for Warning {
                 "body {body:?}: ν = {poisson} in plane strain locks its formulation on its mesh (a pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?}, or refine it to at least {elements} elements in each direction"
             ),
             Warning::ZoneAtSideEnd {
-                pair,
+                contact,
                 slave,
-                side,
+                extent,
                 end,
                 at,
                 singular,
             } => write!(
                 f,
-                "contact[{pair}]: the contact zone reaches the {} of the slave side {side} of {slave:?} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: {}",
+                "contact[{contact}]: the contact zone reaches the {} of {} at ({:.6e}, {:.6e}){} while the master goes on, so the zone is cut off there: {}",
                 match end {
                     SideEnd::Start => "start",
                     SideEnd::End => "end",
+                },
+                match extent {
+                    SlaveExtent::Side(side) => format!("the slave side {side} of {slave:?}"),
+                    SlaveExtent::Boundary => format!("the slave boundary on {slave:?}"),
                 },
                 at[0],
                 at[1],
@@ -333,19 +346,19 @@ impl std::fmt::Display for Warning {
                 // a side that ends at a collapsed corner cannot be extended
                 // on its own patch: only a body of several patches has a
                 // boundary that goes on past it
-                if *singular {
-                    "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml)"
-                } else {
-                    "extend the slave side beyond the contact zone"
+                match (singular, extent) {
+                    (true, _) => "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml)",
+                    (false, SlaveExtent::Side(_)) => "extend the slave side beyond the contact zone",
+                    (false, SlaveExtent::Boundary) => "give the contact a `slave_boundary` of more of the body's patches, one that goes on past the zone",
                 }
             ),
             Warning::UnresolvedContact {
-                pair,
+                contact,
                 active,
                 elements,
             } => write!(
                 f,
-                "contact[{pair}]: the contact zone rests on {active} quadrature point(s) in {elements} slave element(s): the mesh does not resolve it, and its peak pressure and width are not meaningful (refine the slave side until the zone spans several elements)"
+                "contact[{contact}]: the contact zone rests on {active} quadrature point(s) in {elements} slave element(s): the mesh does not resolve it, and its peak pressure and width are not meaningful (refine the slave side until the zone spans several elements)"
             ),
         }
     }

@@ -15,7 +15,7 @@ mod side_end;
 mod solution;
 
 pub use kinds::{
-    Counted, PenaltyRemedy, SideEnd, Warning, LOCKING, LOCKING_POISSON, LOOSE_PENALTY,
+    Counted, PenaltyRemedy, SideEnd, SlaveExtent, Warning, LOCKING, LOCKING_POISSON, LOOSE_PENALTY,
     OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
 };
 pub use setup::{before_solve, locking, setup_warnings};

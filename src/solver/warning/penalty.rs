@@ -1,30 +1,38 @@
-//! The penalty warnings of every pair, counted from the stability of each
+//! The penalty warnings of every contact, counted from the stability of each
 //! point's penalty against the bound of its element, and their remedies.
 
 use super::kinds::{
     round2, Counted, PenaltyRemedy, Warning, LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET,
 };
 use crate::contact::penalty::{stability_of, PenaltyStability};
-use crate::contact::{ContactPair, ContactPoint, Master, Modulus, Penalty};
+use crate::contact::{ContactPair, ContactPoint, Contacts, Master, Modulus, Penalty};
 use crate::dofs::Body;
 
-/// The penalty warnings of every pair: below the bound, or far above it,
-/// counted at the points where `active` holds. One count
-/// ([`stability_of`]) feeds both.
+/// The penalty warnings of every contact: below the bound, or far above
+/// it, counted at the points where `active` holds, over the pieces of the
+/// contact together. One count ([`stability_of`]) feeds both.
 pub(super) fn penalty_warnings(
     bodies: &[Body],
     pairs: &[ContactPair],
+    contacts: &Contacts,
     points: &[ContactPoint],
     counted: Counted,
     active: impl Fn(usize, &ContactPoint) -> bool,
 ) -> Vec<Warning> {
-    let stability = stability_of(points, pairs.len(), active, OVER_PENALTY);
+    let per_pair = stability_of(points, pairs.len(), active, OVER_PENALTY);
     let mut out = Vec::new();
-    for (k, s) in stability.iter().enumerate() {
-        let pair = &pairs[k];
+    for (c, pieces) in contacts.iter() {
+        // the pieces of a contact share its master and its parameters
+        let pair = &pairs[pieces.start];
+        let s = per_pair[pieces]
+            .iter()
+            .copied()
+            .reduce(PenaltyStability::merge)
+            .unwrap_or_default();
+        let s = &s;
         if s.active_below + s.inactive_below > 0 {
             out.push(Warning::PenaltyBelowBound {
-                pair: k,
+                contact: c,
                 below: s.active_below,
                 active: s.active,
                 inactive_below: s.inactive_below,
@@ -37,7 +45,7 @@ pub(super) fn penalty_warnings(
             s.min_active_scale.filter(|&r| r < LOOSE_PENALTY),
         ) {
             out.push(Warning::PenaltyLoose {
-                pair: k,
+                contact: c,
                 active: s.active,
                 min_ratio,
                 counted,
@@ -45,7 +53,7 @@ pub(super) fn penalty_warnings(
             });
         } else if let (true, Some(max_ratio)) = (s.active_over > 0, s.max_active_scale) {
             out.push(Warning::PenaltyFarAboveBound {
-                pair: k,
+                contact: c,
                 over: s.active_over,
                 active: s.active,
                 max_ratio,

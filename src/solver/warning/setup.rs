@@ -3,22 +3,24 @@
 
 use super::kinds::{Counted, Warning, LOCKING, LOCKING_POISSON, STIFFER_SLAVE};
 use super::penalty::penalty_warnings;
-use crate::contact::penalty::first_touch;
-use crate::contact::{ContactPair, ContactPoint, Master};
+use crate::contact::penalty::first_touch_of;
+use crate::contact::{ContactPair, ContactPoint, Contacts, Master};
 use crate::dofs::Body;
 use crate::material::{Formulation, Plane};
 
 /// The warnings that do not depend on the solution: the choice of slave,
 /// and locking of nearly incompressible bodies.
-pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
+pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair], contacts: &Contacts) -> Vec<Warning> {
     let mut out = Vec::new();
-    for (k, pair) in pairs.iter().enumerate() {
+    for (c, pieces) in contacts.iter() {
+        // the pieces of a contact share its slave body and its master
+        let pair = &pairs[pieces.start];
         if let Master::Body { body, .. } = pair.master {
             let (s, m) = (&bodies[pair.slave], &bodies[body]);
             let contrast = s.material.young / m.material.young;
             if contrast > STIFFER_SLAVE {
                 out.push(Warning::StifferSlave {
-                    pair: k,
+                    contact: c,
                     slave: s.name.clone(),
                     master: m.name.clone(),
                     contrast,
@@ -26,11 +28,21 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair]) -> Vec<Warning> {
             }
         }
     }
+    // the patches of one body share its name and material: one warning,
+    // from its coarsest patch
+    let mut locked: Vec<(&str, f64, Warning)> = Vec::new();
     for b in bodies {
-        if let Some(w) = locking(b) {
-            out.push(w);
+        let Some(w) = locking(b) else { continue };
+        let Warning::NearlyIncompressible { indicator, .. } = w else {
+            continue;
+        };
+        match locked.iter_mut().find(|(name, ..)| *name == b.name) {
+            Some(prev) if indicator > prev.1 => *prev = (&b.name, indicator, w),
+            Some(_) => {}
+            None => locked.push((&b.name, indicator, w)),
         }
     }
+    out.extend(locked.into_iter().map(|(.., w)| w));
     out
 }
 
@@ -61,17 +73,19 @@ pub fn locking(b: &Body) -> Option<Warning> {
 
 /// The warnings of a problem before it is solved: [`setup_warnings`], and
 /// the penalty counted where the bodies first touch
-/// ([`crate::contact::penalty::first_touch`]).
+/// ([`crate::contact::penalty::first_touch_of`]).
 pub fn before_solve(
     bodies: &[Body],
     pairs: &[ContactPair],
+    contacts: &Contacts,
     points: &[ContactPoint],
 ) -> Vec<Warning> {
-    let touch = first_touch(points, pairs.len());
-    let mut out = setup_warnings(bodies, pairs);
+    let touch = first_touch_of(points, contacts);
+    let mut out = setup_warnings(bodies, pairs, contacts);
     out.extend(penalty_warnings(
         bodies,
         pairs,
+        contacts,
         points,
         Counted::FirstTouch,
         |q, _| touch[q],

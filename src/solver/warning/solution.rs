@@ -10,10 +10,12 @@ use crate::problem::Problem;
 /// The warnings of a converged solution `full` (all DOFs).
 pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
     let p: Vec<f64> = problem.points.iter().map(|cp| cp.p(full)).collect();
-    let mut out = setup_warnings(&problem.bodies, &problem.pairs);
+    let contacts = &problem.contacts;
+    let mut out = setup_warnings(&problem.bodies, &problem.pairs, contacts);
     out.extend(penalty_warnings(
         &problem.bodies,
         &problem.pairs,
+        contacts,
         &problem.points,
         Counted::Solution,
         |q, _| p[q] <= 0.0,
@@ -23,42 +25,47 @@ pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
     let doubtful: Vec<usize> = out
         .iter()
         .filter_map(|w| match w {
-            Warning::PenaltyBelowBound { pair, .. } => Some(*pair),
+            Warning::PenaltyBelowBound { contact, .. } => Some(*contact),
             _ => None,
         })
         .collect();
-    out.extend(
-        zones_at_side_end(problem, &p).into_iter().filter(
-            |w| !matches!(w, Warning::ZoneAtSideEnd { pair, .. } if doubtful.contains(pair)),
-        ),
-    );
-    for (k, pair) in problem.pairs.iter().enumerate() {
-        let active: Vec<&ContactPoint> = (0..p.len())
-            .filter(|&q| problem.points[q].pair == k && p[q] <= 0.0)
-            .map(|q| &problem.points[q])
-            .collect();
-        if active.is_empty() {
+    out.extend(zones_at_side_end(problem, &p).into_iter().filter(
+        |w| !matches!(w, Warning::ZoneAtSideEnd { contact, .. } if doubtful.contains(contact)),
+    ));
+    for (c, pieces) in contacts.iter() {
+        // over the pieces of the contact: the active points, and the slave
+        // elements the zone touches (points of the slave side; the
+        // mirrored half of the unbiased form lies on the master)
+        let (mut active, mut elements) = (0, 0);
+        for k in pieces {
+            let pair = &problem.pairs[k];
+            let own: Vec<&ContactPoint> = (0..p.len())
+                .filter(|&q| problem.points[q].pair == k && p[q] <= 0.0)
+                .map(|q| &problem.points[q])
+                .collect();
+            let sides = problem.bodies[pair.slave].space.boundary(pair.slave_side);
+            let mut touched: Vec<usize> = own
+                .iter()
+                .filter(|cp| cp.role == Role::Slave)
+                .filter_map(|cp| {
+                    sides
+                        .iter()
+                        .position(|be| be.range[0] <= cp.t && cp.t <= be.range[1])
+                })
+                .collect();
+            touched.sort_unstable();
+            touched.dedup();
+            active += own.len();
+            elements += touched.len();
+        }
+        if active == 0 {
             continue;
         }
-        // the slave elements the zone touches (points of the slave side;
-        // the mirrored half of the unbiased form lies on the master)
-        let sides = problem.bodies[pair.slave].space.boundary(pair.slave_side);
-        let mut touched: Vec<usize> = active
-            .iter()
-            .filter(|cp| cp.role == Role::Slave)
-            .filter_map(|cp| {
-                sides
-                    .iter()
-                    .position(|be| be.range[0] <= cp.t && cp.t <= be.range[1])
-            })
-            .collect();
-        touched.sort_unstable();
-        touched.dedup();
-        if active.len() < RESOLVED || touched.len() == 1 {
+        if active < RESOLVED || elements == 1 {
             out.push(Warning::UnresolvedContact {
-                pair: k,
-                active: active.len(),
-                elements: touched.len(),
+                contact: c,
+                active,
+                elements,
             });
         }
     }
