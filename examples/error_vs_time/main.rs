@@ -10,6 +10,7 @@ use companion::hertz as setup;
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
+use companion::Facts;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::Hertz;
 use iga_contact::post::{relative, Errors, PressureProfile, Reference};
@@ -189,27 +190,60 @@ const QUANTITIES: [Quantity; 3] = [
     ("pressure_l2", "pressure L2", |p| p.pressure_l2),
 ];
 
+/// The chapter "Accuracy per second", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("error_vs_time")?;
     let exact = setup::analytic(&setup::scene(setup::iga(2, 8))?)?;
 
-    // ANCHOR: reference
+    // How it is measured: the reference, then every rung of the ladder.
+    let reference = solve_reference()?;
+    let runs = measure_ladder(&reference, &exact)?;
+    let points: Vec<&Point> = runs.iter().map(|r| &r.point).collect();
+
+    // Results: every run, Table ET1, and which method reaches a target
+    // first.
+    chapter.table("runs", &runs_table(&runs)?)?;
+    chapter.timed("runs.csv"); // its `seconds` column
+    write_first_tables(&mut chapter, &points)?;
+    chapter.table("reference", &reference_table(&reference, &exact)?)?;
+
+    // Results: the errors against the time, one figure per quantity.
+    draw_errors_against_time(&mut chapter, &points)?;
+
+    // The numbers the prose quotes.
+    let f = chapter.facts();
+    record_reference_facts(f, &reference, &runs, &exact)?;
+    record_target_facts(f, &points)?;
+    record_energy_facts(f, &runs)?;
+    chapter.finish()
+}
+
+// ANCHOR: reference
+/// The converged fine-mesh solution every error is measured against.
+fn solve_reference() -> Result<Reference> {
     let (rp, rn) = REFERENCE;
     let scene = setup::scene(setup::iga(rp, rn))?;
     let problem = scene.build()?;
     let solution = solve(&problem, &SolverOptions::with_kind(SolverKind::Newton))?;
-    let reference = Reference::new(&problem, &solution.u, &solution.full)?;
-    // ANCHOR_END: reference
+    Reference::new(&problem, &solution.u, &solution.full)
+}
+// ANCHOR_END: reference
+
+/// "How it is measured": every method on every mesh of the ladder.
+fn measure_ladder(reference: &Reference, exact: &Hertz) -> Result<Vec<Run>> {
     let mut runs = Vec::new();
     for m in Method::ALL {
         for n in LADDER {
-            runs.push(measure(m, n, &reference, &exact)?);
+            runs.push(measure(m, n, reference, exact)?);
         }
     }
-    let points: Vec<&Point> = runs.iter().map(|r| &r.point).collect();
-    let methods: Vec<Method> = Method::ALL.to_vec();
+    Ok(runs)
+}
 
-    // ANCHOR: tables
+// ANCHOR: tables
+/// "Results": every run with its errors (`runs.csv`, in the book without
+/// the seconds).
+fn runs_table(runs: &[Run]) -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("method", "method"),
         Column::plain("degree", "p"),
@@ -236,7 +270,7 @@ fn main() -> Result<()> {
         Column::plain("iterations", "iterations").csv_only(),
         Column::plain("solver", "solver").csv_only(),
     ]);
-    for r in &runs {
+    for r in runs {
         let (method, degree) = r.point.method.key();
         table.push(vec![
             method.into(),
@@ -254,11 +288,12 @@ fn main() -> Result<()> {
             r.solver.clone().into(),
         ])?;
     }
-    chapter.table("runs", &table)?;
-    chapter.timed("runs.csv"); // its `seconds` column
+    Ok(table)
+}
 
-    // Which method reaches each target first: one table per quantity, a
-    // row per method, a column per target.
+/// "Which method reaches a target first": one table per quantity, a row
+/// per method, a column per target (timed: the cells are seconds).
+fn write_first_tables(chapter: &mut Chapter, points: &[&Point]) -> Result<()> {
     for (key, _, err) in QUANTITIES {
         let mut columns = vec![Column::plain("method", "method")];
         for (_, key, header) in TARGETS {
@@ -267,13 +302,13 @@ fn main() -> Result<()> {
         let mut first = Table::new(columns);
         let mut best: Vec<Option<(f64, Method)>> = vec![None; TARGETS.len()];
         let mut rows = Vec::new();
-        for &m in &methods {
+        for m in Method::ALL {
             if !points.iter().any(|p| p.method == m && err(p).is_some()) {
                 continue;
             }
             let mut row: Vec<Cell> = vec![m.label().into()];
             for (k, (t, _, _)) in TARGETS.iter().enumerate() {
-                row.push(match first_reaching(&points, m, *t, err) {
+                row.push(match first_reaching(points, m, *t, err) {
                     Some((s, n)) => {
                         if best[k].is_none_or(|(b, _)| s < b) {
                             best[k] = Some((s, m));
@@ -298,7 +333,12 @@ fn main() -> Result<()> {
         chapter.timed(&format!("{stem}.csv"));
         chapter.timed(&format!("{stem}.md"));
     }
+    Ok(())
+}
 
+/// Table ET1: the reference and Hertz's values.
+fn reference_table(reference: &Reference, exact: &Hertz) -> Result<Table> {
+    let (rp, rn) = REFERENCE;
     let mut refs = Table::new(vec![
         Column::plain("solution", "solution"),
         Column::new("p0", "p₀", Unit::Megapascal, Format::Fixed(4)),
@@ -322,10 +362,14 @@ fn main() -> Result<()> {
         exact.half_width.into(),
         Cell::Empty,
     ])?;
-    chapter.table("reference", &refs)?;
-    // ANCHOR_END: tables
+    Ok(refs)
+}
+// ANCHOR_END: tables
 
-    // ANCHOR: figures
+// ANCHOR: figures
+/// "Results": each quantity's error against the wall time, with the
+/// targets as horizontal lines (timed: the abscissae are seconds).
+fn draw_errors_against_time(chapter: &mut Chapter, points: &[&Point]) -> Result<()> {
     for (key, name, err) in QUANTITIES {
         let line = |m: Method| {
             let pts = points
@@ -361,10 +405,19 @@ fn main() -> Result<()> {
             &series,
         )?;
     }
-    // ANCHOR_END: figures
+    Ok(())
+}
+// ANCHOR_END: figures
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// "How it is measured" and "Discussion" quote how far the reference and
+/// the finest meshes lie from Hertz.
+fn record_reference_facts(
+    f: &mut Facts,
+    reference: &Reference,
+    runs: &[Run],
+    exact: &Hertz,
+) -> Result<()> {
     f.number(
         "reference_p0_vs_hertz",
         relative(reference.measures.p0, exact.p0),
@@ -390,15 +443,19 @@ fn main() -> Result<()> {
             Format::Percent(1).render(lo).trim_end_matches(" %"),
             Format::Percent(1).render(hi)
         ),
-    )?;
-    // which method reaches each target first in time, and on the coarsest
-    // mesh, per quantity and target
+    )
+}
+
+/// "Which method reaches a target first": which method reaches each
+/// target first in time, and on the coarsest mesh, per quantity and
+/// target.
+fn record_target_facts(f: &mut Facts, points: &[&Point]) -> Result<()> {
     let (mut reached, mut iga_first, mut iga_first_cells) = (0, 0, Vec::new());
     for (qk, qname, err) in QUANTITIES {
         for (t, tk, th) in TARGETS {
             let mut fastest: Option<(f64, Method)> = None;
-            for &m in &methods {
-                let reached = first_reaching(&points, m, t, err);
+            for m in Method::ALL {
+                let reached = first_reaching(points, m, t, err);
                 if let Some((s, _)) = reached {
                     if fastest.is_none_or(|(b, _)| s < b) {
                         fastest = Some((s, m));
@@ -418,9 +475,12 @@ fn main() -> Result<()> {
     }
     f.timed_number("targets_reached", reached as f64, Format::Plain)?;
     f.timed_number("targets_iga_first", iga_first as f64, Format::Plain)?;
-    f.timed_text("targets_iga_first_list", iga_first_cells.join(", "))?;
-    // the energy indicator along the ladder: the methods along which it
-    // rises somewhere from one mesh to the next
+    f.timed_text("targets_iga_first_list", iga_first_cells.join(", "))
+}
+
+/// "Discussion" names the methods along which the energy indicator rises
+/// somewhere from one mesh to the next.
+fn record_energy_facts(f: &mut Facts, runs: &[Run]) -> Result<()> {
     let rising: Vec<String> = Method::ALL
         .iter()
         .filter(|&&m| {
@@ -434,10 +494,9 @@ fn main() -> Result<()> {
         .map(|m| m.label())
         .collect();
     f.count("energy_rising_methods", rising.len())?;
-    f.text("energy_rising_list", rising.join(", "))?;
-    // ANCHOR_END: facts
-    chapter.finish()
+    f.text("energy_rising_list", rising.join(", "))
 }
+// ANCHOR_END: facts
 
 /// A time in the unit that keeps it short: 0.8 ms, 27.5 ms, 5.06 s.
 fn human_seconds(s: f64) -> String {

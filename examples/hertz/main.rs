@@ -15,6 +15,7 @@ use companion::hertz as setup;
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
+use companion::Facts;
 use iga_contact::error::{Error, Result};
 use iga_contact::nurbs::Side;
 use iga_contact::post::hertz::Hertz;
@@ -143,17 +144,55 @@ fn run(
 }
 // ANCHOR_END: measure
 
+/// The chapter "Hertz contact of a disk on a rigid plane", section by
+/// section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("hertz")?;
     let base = setup::scene(setup::iga(2, 8))?;
     let exact = setup::analytic(&base)?;
 
-    // ANCHOR: ladder
+    // The solver ladder: Tables H5 and H6.
+    let (ladder, failures) = solve_ladder(&base)?;
+    chapter.table("ladder", &ladder_table(&ladder)?)?;
+    chapter.timed("ladder.csv"); // its `seconds` column
+    chapter.table("failures", &failure_table(&failures)?)?;
+
+    // The iteration history on 8×8 (the paper's Table 2): Tables H1, H2, Fig. H2.
+    let paper = ladder_run(&ladder, "bfgs_paper", 2, 8)?;
+    let default = ladder_run(&ladder, "bfgs", 2, 8)?;
+    write_histories(&mut chapter, paper, default)?;
+    residual_figure(&chapter, paper, default)?;
+
+    // The model and the vertical displacement on 8×8: Figs. H1, H3, the VTU.
+    model_figure(&chapter, &default.problem)?;
+    uy_figure(&chapter, default)?;
+    write_vtu(&chapter, default)?;
+
+    // Convergence under refinement: Tables H3 and H4, Figs. H5 and H6.
+    let study = convergence_study(&ladder)?;
+    write_convergence(&mut chapter, &study, &exact)?;
+
+    // The pressure profile: Fig. H4.
+    profile_outputs(&mut chapter, &pressure_profiles()?, &exact)?;
+
+    // The numbers the prose quotes.
+    let f = chapter.facts();
+    record_model_facts(f, &exact)?;
+    record_convergence_facts(f, &study, &exact)?;
+    record_8x8_facts(f, paper, default, &study, &exact)?;
+    record_ladder_facts(f, &base, &ladder, &failures, &exact)?;
+    chapter.finish()
+}
+
+// ANCHOR: ladder
+/// "The solver ladder": every degree and mesh of the ladder, solved by
+/// each solver; the runs that converged and those that did not.
+fn solve_ladder(base: &Scene) -> Result<(Vec<Run>, Vec<Failure>)> {
     let mut ladder = Vec::new();
     let mut failures = Vec::new();
     for p in LADDER_DEGREES {
         for n in LADDER_ELEMENTS {
-            for (name, opts) in solvers(&base) {
+            for (name, opts) in solvers(base) {
                 match run(p, n, name, &opts)? {
                     Ok(r) => ladder.push(r),
                     Err(f) => failures.push(f),
@@ -161,48 +200,67 @@ fn main() -> Result<()> {
             }
         }
     }
-    // ANCHOR_END: ladder
-    chapter.table("ladder", &ladder_table(&ladder)?)?;
-    chapter.timed("ladder.csv"); // its `seconds` column
-    chapter.table("failures", &failure_table(&failures)?)?;
+    Ok((ladder, failures))
+}
+// ANCHOR_END: ladder
 
-    // Table 2: the paper's iteration and the default on 8×8, p = 2.
-    let find = |solver: &str, p: usize, n: usize| {
-        ladder
-            .iter()
-            .find(|r| r.solver == solver && r.degree == p && r.elements == n)
-    };
-    let paper = find("bfgs_paper", 2, 8).ok_or_else(|| missing("bfgs_paper 8²"))?;
-    let default = find("bfgs", 2, 8).ok_or_else(|| missing("bfgs 8²"))?;
+/// The run of the ladder that the 8×8 sections show (it must have
+/// converged).
+fn ladder_run<'a>(ladder: &'a [Run], solver: &str, p: usize, n: usize) -> Result<&'a Run> {
+    ladder
+        .iter()
+        .find(|r| r.solver == solver && r.degree == p && r.elements == n)
+        .ok_or_else(|| missing(&format!("{solver} {n}²")))
+}
+
+/// Tables H1 and H2 (the paper's Table 2): the paper's iteration and the
+/// default on 8×8, p = 2.
+fn write_histories(chapter: &mut Chapter, paper: &Run, default: &Run) -> Result<()> {
     for (name, r) in [("iterations_8x8_paper", paper), ("iterations_8x8", default)] {
         chapter.table(
             name,
             &history_table(&r.solution.history, Unit::NewtonPerMetre, Unit::Millimetre)?,
         )?;
     }
-    residual_figure(&chapter, paper, default)?;
+    Ok(())
+}
 
-    // Figs. 4 and 5 and the VTU, on the paper's mesh.
-    model_figure(&chapter, &default.problem)?;
-    uy_figure(&chapter, default)?;
+/// The solution on the paper's mesh for a viewer (Fig. H3 is drawn from
+/// the same run).
+fn write_vtu(chapter: &Chapter, default: &Run) -> Result<()> {
     sample_bodies(
         &default.problem.bodies,
         &default.problem.map,
         &default.solution.full,
         4,
     )?
-    .write(chapter.path("hertz.vtu"))?;
+    .write(chapter.path("hertz.vtu"))
+}
 
-    // ANCHOR: convergence
-    // Fig. 6: Newton solutions (the discrete solution does not depend on
-    // the solver, see the ladder), reused from the ladder where it has them.
-    let mut newton: BTreeMap<(usize, usize), (f64, f64, usize)> = ladder
+/// p₀, a and the DOFs of one Newton solve.
+type Measured = (f64, f64, usize);
+
+/// What "Convergence under refinement" reports: the reference, every
+/// degree and mesh of the study, and the reference's check one mesh
+/// coarser.
+struct Convergence {
+    reference: Measured,
+    rows: Vec<(usize, usize, Measured)>,
+    /// The reference's degree on half its elements per direction.
+    check: Measured,
+}
+
+// ANCHOR: convergence
+/// Fig. 6: Newton solutions (the discrete solution does not depend on
+/// the solver, see the ladder), reused from the ladder where it has them.
+fn convergence_study(ladder: &[Run]) -> Result<Convergence> {
+    let mut newton: BTreeMap<(usize, usize), Measured> = ladder
         .iter()
         .filter(|r| r.solver == "newton")
         .map(|r| ((r.degree, r.elements), (r.p0, r.half_width, r.problem.n())))
         .collect();
     let newton_opts = SolverOptions::with_kind(SolverKind::Newton);
-    let mut measured = |p: usize, n: usize| -> Result<(f64, f64, usize)> {
+    let mut measured = |p: usize, n: usize| -> Result<Measured> {
         if let Some(&m) = newton.get(&(p, n)) {
             return Ok(m);
         }
@@ -218,21 +276,43 @@ fn main() -> Result<()> {
             rows.push((p, n, measured(p, n)?));
         }
     }
-    // ANCHOR_END: convergence
-    chapter.table("convergence", &convergence_table(&rows, &exact, reference)?)?;
-    chapter.table("reference", &reference_table(&exact, reference)?)?;
-    convergence_figures(&chapter, &rows, &exact, reference)?;
+    let check = measured(REFERENCE.0, REFERENCE.1 / 2)?;
+    Ok(Convergence {
+        reference,
+        rows,
+        check,
+    })
+}
+// ANCHOR_END: convergence
 
-    // The pressure profiles, against Hertz's ellipse.
+/// "Convergence under refinement": Tables H3 and H4 and Figs. H5 and H6,
+/// against Hertz and against the reference.
+fn write_convergence(chapter: &mut Chapter, study: &Convergence, exact: &Hertz) -> Result<()> {
+    let reference = study.reference;
+    chapter.table(
+        "convergence",
+        &convergence_table(&study.rows, exact, reference)?,
+    )?;
+    chapter.table("reference", &reference_table(exact, reference)?)?;
+    convergence_figures(chapter, &study.rows, exact, reference)
+}
+
+/// "The pressure profile": the dense profiles of two meshes, against
+/// Hertz's ellipse.
+fn pressure_profiles() -> Result<Vec<(usize, PressureProfile)>> {
+    let newton_opts = SolverOptions::with_kind(SolverKind::Newton);
     let mut profiles = Vec::new();
     for n in PROFILE_ELEMENTS {
         let r = run(2, n, "newton", &newton_opts)?.map_err(|f| not_converged(&f))?;
         profiles.push((n, PressureProfile::dense(&r.problem, &r.solution.full)?));
     }
-    profile_outputs(&mut chapter, &profiles, &exact)?;
+    Ok(profiles)
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// "The model" and "What Hertz predicts" quote the load and Hertz's
+/// solution.
+fn record_model_facts(f: &mut Facts, exact: &Hertz) -> Result<()> {
     f.number("weight", exact.load, Format::Fixed(0))?;
     f.number("half_load", exact.load / 2.0, Format::Fixed(0))?;
     f.number("hertz_a_mm", exact.half_width * 1e3, Format::Fixed(3))?;
@@ -246,8 +326,13 @@ fn main() -> Result<()> {
         "a_over_r_squared",
         (exact.half_width / exact.radius).powi(2),
         Format::Percent(0),
-    )?;
-    let (rp0, ra, rdofs) = reference;
+    )
+}
+
+/// "Convergence under refinement" quotes the reference, its check, and
+/// every mesh's errors against Hertz and against the reference.
+fn record_convergence_facts(f: &mut Facts, study: &Convergence, exact: &Hertz) -> Result<()> {
+    let (rp0, ra, rdofs) = study.reference;
     f.count("reference_degree", REFERENCE.0)?;
     f.count("reference_elements", REFERENCE.1)?;
     f.count("reference_dofs", rdofs)?;
@@ -261,7 +346,7 @@ fn main() -> Result<()> {
         relative(ra, exact.half_width),
         Format::SignedPercent(1),
     )?;
-    let (cp0, ca, _) = measured(REFERENCE.0, REFERENCE.1 / 2)?;
+    let (cp0, ca, _) = study.check;
     f.number(
         "reference_check_p0",
         relative(cp0, rp0).abs(),
@@ -272,6 +357,34 @@ fn main() -> Result<()> {
         relative(ca, ra).abs(),
         Format::Percent(2),
     )?;
+    f.number("reference_p0_mpa", rp0 * 1e-6, Format::Fixed(5))?;
+    f.number("reference_a_mm", ra * 1e3, Format::Fixed(4))?;
+    for &(p, n, (p0, a, _)) in &study.rows {
+        let key = format!("p{p}_{n}");
+        let hertz = [exact.p0, exact.half_width];
+        f.contact_errors(&key, [p0, a], "hertz", hertz, Format::SignedPercent(2))?;
+        f.contact_errors(
+            &key,
+            [p0, a],
+            "reference",
+            [rp0, ra],
+            Format::SignedPercent(2),
+        )?;
+    }
+    Ok(())
+}
+
+/// "Measuring the peak pressure", "The iteration history on 8×8" and "The
+/// vertical displacement" quote the paper's mesh: p₀ and a, the solver's
+/// own points, both histories, the largest displacement.
+fn record_8x8_facts(
+    f: &mut Facts,
+    paper: &Run,
+    default: &Run,
+    study: &Convergence,
+    exact: &Hertz,
+) -> Result<()> {
+    let (rp0, ra, _) = study.reference;
     let m8 = PressureProfile::dense(&default.problem, &default.solution.full)?.measures(0);
     f.number("p0_8x8_mpa", m8.p0 * 1e-6, Format::Fixed(4))?;
     f.number("a_8x8_mm", m8.half_width * 1e3, Format::Fixed(2))?;
@@ -321,6 +434,24 @@ fn main() -> Result<()> {
     }
     f.count("contact_points_8x8", default.problem.points.len())?;
     f.number("uy_max_8x8_mm", -min_uy(default) * 1e3, Format::Fixed(1))?;
+    let spacing = default
+        .problem
+        .points
+        .windows(2)
+        .map(|w| (w[1].x[0] - w[0].x[0]).abs())
+        .fold(0.0, f64::max);
+    f.number("solver_point_spacing_mm", spacing * 1e3, Format::Fixed(0))
+}
+
+/// "The solver ladder" quotes the balance of forces, the spread between
+/// the solvers and their iterations; the claims chapter reads every run.
+fn record_ladder_facts(
+    f: &mut Facts,
+    base: &Scene,
+    ladder: &[Run],
+    failures: &[Failure],
+    exact: &Hertz,
+) -> Result<()> {
     let force_balance = ladder
         .iter()
         .map(|r| relative(r.contact_force, -r.applied_force).abs())
@@ -331,8 +462,8 @@ fn main() -> Result<()> {
         .map(|r| relative(-r.applied_force, exact.load / 2.0).abs())
         .fold(0.0, f64::max);
     f.number("load_quadrature", quadrature, Format::Pow10(0))?;
-    f.number("solver_spread", solver_spread(&ladder), Format::Pow10(0))?;
-    for (name, _) in solvers(&base) {
+    f.number("solver_spread", solver_spread(ladder), Format::Pow10(0))?;
+    for (name, _) in solvers(base) {
         let its: Vec<usize> = ladder
             .iter()
             .filter(|r| r.solver == name)
@@ -346,38 +477,17 @@ fn main() -> Result<()> {
     f.count("failures", failures.len())?;
     // Every run of the ladder by solver, degree and mesh: its iterations,
     // or "failed" (the claims chapter reads these).
-    for r in &ladder {
+    for r in ladder {
         let key = format!("its_{}_p{}_{}", r.solver, r.degree, r.elements);
         f.count(&key, r.solution.history.len())?;
     }
-    for r in &failures {
+    for r in failures {
         let key = format!("its_{}_p{}_{}", r.solver, r.degree, r.elements);
         f.text(&key, "failed")?;
     }
-    f.number("reference_p0_mpa", rp0 * 1e-6, Format::Fixed(5))?;
-    f.number("reference_a_mm", ra * 1e3, Format::Fixed(4))?;
-    for &(p, n, (p0, a, _)) in &rows {
-        let key = format!("p{p}_{n}");
-        let hertz = [exact.p0, exact.half_width];
-        f.contact_errors(&key, [p0, a], "hertz", hertz, Format::SignedPercent(2))?;
-        f.contact_errors(
-            &key,
-            [p0, a],
-            "reference",
-            [rp0, ra],
-            Format::SignedPercent(2),
-        )?;
-    }
-    let spacing = default
-        .problem
-        .points
-        .windows(2)
-        .map(|w| (w[1].x[0] - w[0].x[0]).abs())
-        .fold(0.0, f64::max);
-    f.number("solver_point_spacing_mm", spacing * 1e3, Format::Fixed(0))?;
-    // ANCHOR_END: facts
-    chapter.finish()
+    Ok(())
 }
+// ANCHOR_END: facts
 
 fn missing(what: &str) -> Error {
     Error::invalid("hertz ladder", what, "this run did not converge")

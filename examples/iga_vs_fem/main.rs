@@ -12,7 +12,9 @@ use companion::hertz as setup;
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
+use companion::Facts;
 use iga_contact::error::{Error, Result};
+use iga_contact::post::hertz::Hertz;
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::report::plot::{line_chart, Axes, Series};
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
@@ -139,12 +141,37 @@ fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
 }
 // ANCHOR_END: run
 
+/// The chapter "IGA against FEM on the coarse mesh", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("iga_vs_fem")?;
     let exact = setup::analytic(&setup::scene(setup::iga(2, ELEMENTS))?)?;
-    // The disk's converged solution (the Hertz chapter's reference, p = 3,
-    // 128²): Hertz's formula is itself off this model by about 1–2 %, so
-    // the errors are given against both.
+    let reference = hertz_reference()?;
+    let rows = methods()
+        .into_iter()
+        .map(|(label, refine)| measure(label, refine))
+        .collect::<Result<Vec<_>>>()?;
+
+    // Results: Tables F1 and F2.
+    chapter.table("comparison", &comparison_table(&rows, &exact, reference)?)?;
+    chapter.table("timings", &timings_table(&rows)?)?;
+    chapter.timed("timings.csv");
+    chapter.timed("timings.md");
+
+    // The numbers the prose quotes.
+    let f = chapter.facts();
+    record_setting_facts(f)?;
+    record_method_facts(f, &rows, &exact, reference)?;
+    record_gap_facts(f, &rows, reference)?;
+
+    // Results: Fig. F1.
+    profile_figure(&chapter, &rows, &exact)?;
+    chapter.finish()
+}
+
+/// p₀ and a of the disk's converged solution (the Hertz chapter's
+/// reference, p = 3, 128²): Hertz's formula is itself off this model by
+/// about 1–2 %, so the errors are given against both.
+fn hertz_reference() -> Result<(f64, f64)> {
     let hertz_facts = companion::facts("hertz")?;
     let reference = |key: &str, scale: f64| {
         hertz_facts
@@ -152,16 +179,16 @@ fn main() -> Result<()> {
             .map(|v| v * scale)
             .ok_or_else(|| Error::invalid("hertz facts", key, "missing"))
     };
-    let (ref_p0, ref_a) = (
+    Ok((
         reference("reference_p0_mpa", 1e6)?,
         reference("reference_a_mm", 1e-3)?,
-    );
-    let rows = methods()
-        .into_iter()
-        .map(|(label, refine)| measure(label, refine))
-        .collect::<Result<Vec<_>>>()?;
+    ))
+}
 
-    // ANCHOR: tables
+// ANCHOR: tables
+/// Table F1: the three methods' DOFs, iterations, and errors against Hertz
+/// and the reference, beside the paper's errors.
+fn comparison_table(rows: &[Row], exact: &Hertz, (ref_p0, ref_a): (f64, f64)) -> Result<Table> {
     let mut comparison = Table::new(vec![
         Column::plain("method", "method"),
         Column::plain("dofs", "DOFs"),
@@ -198,24 +225,7 @@ fn main() -> Result<()> {
         Column::plain("corrections", "corrections").csv_only(),
         Column::plain("solver", "solver").csv_only(),
     ]);
-    let mut timings = Table::new(vec![
-        Column::plain("method", "method"),
-        Column::plain("solver", "solver, threads"),
-        Column::plain("time", "assembly + solve"),
-        Column::new(
-            "ratio",
-            "IGA time / method time",
-            Unit::None,
-            Format::Times(2),
-        ),
-        Column::plain("repeats", "repeats").csv_only(),
-    ]);
-    let ms = |s: f64| format!("{} ms", Format::Fixed(2).render(1e3 * s));
-    let threads = rayon::current_num_threads();
-    let iga_seconds = rows[0].seconds;
-    let iga_one_thread_seconds = rows[0].one_thread_seconds;
-    let iga_paper_seconds = rows[0].paper_seconds;
-    for r in &rows {
+    for r in rows {
         let m = r.profile.measures(0);
         comparison.push(vec![
             r.label.into(),
@@ -260,7 +270,30 @@ fn main() -> Result<()> {
             Cell::Empty,
         ])?;
     }
-    for r in &rows {
+    Ok(comparison)
+}
+
+/// Table F2: the wall times of the three methods (the paper's setting,
+/// then the default on one thread and on all), beside the paper's.
+fn timings_table(rows: &[Row]) -> Result<Table> {
+    let mut timings = Table::new(vec![
+        Column::plain("method", "method"),
+        Column::plain("solver", "solver, threads"),
+        Column::plain("time", "assembly + solve"),
+        Column::new(
+            "ratio",
+            "IGA time / method time",
+            Unit::None,
+            Format::Times(2),
+        ),
+        Column::plain("repeats", "repeats").csv_only(),
+    ]);
+    let ms = |s: f64| format!("{} ms", Format::Fixed(2).render(1e3 * s));
+    let threads = rayon::current_num_threads();
+    let iga_seconds = rows[0].seconds;
+    let iga_one_thread_seconds = rows[0].one_thread_seconds;
+    let iga_paper_seconds = rows[0].paper_seconds;
+    for r in rows {
         timings.push(vec![
             r.label.into(),
             "the paper's BFGS, 1 thread".into(),
@@ -274,7 +307,7 @@ fn main() -> Result<()> {
             REPEATS.into(),
         ])?;
     }
-    for r in &rows {
+    for r in rows {
         timings.push(vec![
             r.label.into(),
             "default, 1 thread".into(),
@@ -283,7 +316,7 @@ fn main() -> Result<()> {
             REPEATS.into(),
         ])?;
     }
-    for r in &rows {
+    for r in rows {
         timings.push(vec![
             r.label.into(),
             format!("default, {threads} threads").into(),
@@ -308,17 +341,21 @@ fn main() -> Result<()> {
             Cell::Empty,
         ])?;
     }
-    chapter.table("comparison", &comparison)?;
-    chapter.table("timings", &timings)?;
-    chapter.timed("timings.csv");
-    chapter.timed("timings.md");
-    // ANCHOR_END: tables
+    Ok(timings)
+}
+// ANCHOR_END: tables
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// "How it is measured" and the paper's side of "Results": the mesh, the
+/// repeats, the threads, and the paper's own numbers.
+fn record_setting_facts(f: &mut Facts) -> Result<()> {
     f.count("elements", ELEMENTS)?;
     f.count("repeats", REPEATS)?;
-    f.timed_number("threads", threads as f64, Format::Plain)?;
+    f.timed_number(
+        "threads",
+        rayon::current_num_threads() as f64,
+        Format::Plain,
+    )?;
     f.number("paper_iga_error", PAPER_IGA_ERROR, Format::Percent(2))?;
     f.number("paper_fem_error", PAPER_FEM_ERROR, Format::Percent(1))?;
     f.number("paper_iga_seconds", PAPER_IGA_SECONDS, Format::Fixed(0))?;
@@ -327,8 +364,20 @@ fn main() -> Result<()> {
         "paper_ratio",
         PAPER_IGA_SECONDS / PAPER_FEM_SECONDS,
         Format::Times(2),
-    )?;
-    for (key, r) in ["iga", "q1", "q2"].iter().zip(&rows) {
+    )
+}
+
+/// "Discussion" quotes each method's errors, iterations and time ratios.
+fn record_method_facts(
+    f: &mut Facts,
+    rows: &[Row],
+    exact: &Hertz,
+    (ref_p0, ref_a): (f64, f64),
+) -> Result<()> {
+    let iga_seconds = rows[0].seconds;
+    let iga_one_thread_seconds = rows[0].one_thread_seconds;
+    let iga_paper_seconds = rows[0].paper_seconds;
+    for (key, r) in ["iga", "q1", "q2"].iter().zip(rows) {
         let m = r.profile.measures(0);
         f.number(
             &format!("{key}_p0_error"),
@@ -382,8 +431,13 @@ fn main() -> Result<()> {
         )?;
         f.text(&format!("{key}_solver"), r.solver.clone())?;
     }
-    // The gap between Q1 and IGA as the ratio of their errors against the
-    // reference, beside the paper's ratio of its two errors.
+    Ok(())
+}
+
+/// "Discussion" sets the gap between Q1 and IGA, as the ratio of their
+/// errors against the reference, beside the paper's ratio of its two
+/// errors.
+fn record_gap_facts(f: &mut Facts, rows: &[Row], (ref_p0, ref_a): (f64, f64)) -> Result<()> {
     let (iga, q1) = (rows[0].profile.measures(0), rows[1].profile.measures(0));
     let gap =
         |q1: f64, iga: f64, reference: f64| relative(q1, reference) / relative(iga, reference);
@@ -397,10 +451,12 @@ fn main() -> Result<()> {
         "paper_gap",
         PAPER_FEM_ERROR / PAPER_IGA_ERROR,
         Format::Times(1),
-    )?;
-    // ANCHOR_END: facts
+    )
+}
+// ANCHOR_END: facts
 
-    // The three profiles against Hertz, in mm and MPa, up to 1.5 a.
+/// Fig. F1: the three profiles against Hertz, in mm and MPa, up to 1.5 a.
+fn profile_figure(chapter: &Chapter, rows: &[Row], exact: &Hertz) -> Result<()> {
     let x_max = 1.5 * exact.half_width;
     let mut series: Vec<Series> = rows
         .iter()
@@ -432,6 +488,5 @@ fn main() -> Result<()> {
             log_y: false,
         },
         &series,
-    )?;
-    chapter.finish()
+    )
 }

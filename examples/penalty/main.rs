@@ -10,6 +10,7 @@
 
 use companion::chapter::Chapter;
 use companion::penalty::{hertz, measure};
+use companion::Facts;
 use iga_contact::contact::penalty::stability_bound;
 use iga_contact::contact::{ContactPoint, Penalty, Theta};
 use iga_contact::error::Result;
@@ -101,13 +102,55 @@ fn smallest(problem: &Problem) -> &ContactPoint {
 }
 // ANCHOR_END: ratios
 
+/// The chapter "The penalty, measured", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("penalty")?;
 
-    // ---------------------------------------------------------------
-    // 1. The empirical penalty against the sharp bound, per degree.
-    // ---------------------------------------------------------------
-    // ANCHOR: table
+    // (11) against the bound: Table PS1, Fig. PS1 and their facts.
+    let survey = survey_ratios()?;
+    chapter.csv("ratios", &survey.long)?;
+    chapter.table("first_touch", &first_touch_table(&survey.first)?)?;
+    draw_ratios(&chapter, &survey.first)?;
+    record_ratio_facts(chapter.facts(), &survey.first)?;
+
+    // Where the map is singular.
+    record_corner_facts(chapter.facts(), &survey)?;
+
+    // The sharp penalty as an option: Table PS2.
+    let sharp = compare_sharp_penalty()?;
+    chapter.table("sharp", &sharp.table)?;
+    record_sharp_facts(chapter.facts(), &sharp)?;
+
+    // Small penalties, where the answer stops being unique: Table PS5.
+    let small = sweep_small_penalties()?;
+    chapter.table("small_penalty", &small.table)?;
+    record_small_facts(chapter.facts(), &small)?;
+
+    chapter.finish()
+}
+
+// ANCHOR: table
+/// [set-up][mesh][degree] → the ratio at first touch.
+type FirstTouch = [[[f64; 5]; 2]; 4];
+
+/// What the survey of the four set-ups gives Table PS1, Fig. PS1 and the
+/// facts on the singular corner.
+struct Survey {
+    /// Every set-up, degree and mesh: the ratio at first touch and the
+    /// smallest (the long form of Table PS1, `ratios.csv`).
+    long: Table,
+    first: FirstTouch,
+    /// Hertz 16²: (first-touch point, smallest point) per degree.
+    corner: Vec<(ContactPoint, ContactPoint)>,
+    /// Hertz 16²: the smallest ratio over the regular points.
+    regular_min: f64,
+    /// Hertz 16², p = 2: the points where the map is singular.
+    singular_points: usize,
+}
+
+/// Table PS1 and the corner's facts come from one pass over every set-up,
+/// degree and mesh.
+fn survey_ratios() -> Result<Survey> {
     let mut long = Table::new(vec![
         Column::plain("setup", "set-up"),
         Column::plain("degree", "p"),
@@ -120,11 +163,10 @@ fn main() -> Result<()> {
         ),
         Column::new("smallest", "smallest", Unit::None, Format::Sci(1)),
     ]);
-    // [set-up][mesh][degree] → ratio at first touch
     let mut first = [[[0.0; 5]; 2]; 4];
-    let mut corner = Vec::new(); // Hertz 16²: (first-touch point, smallest point) per degree
-    let mut regular_min = f64::INFINITY; // Hertz 16²: smallest ratio over the regular points
-    let mut singular_points = 0; // Hertz 16², p = 2: points where the map is singular
+    let mut corner = Vec::new();
+    let mut regular_min = f64::INFINITY;
+    let mut singular_points = 0;
     for (ip, p) in DEGREES.into_iter().enumerate() {
         for (im, n) in MESHES.into_iter().enumerate() {
             for (is, problem) in setups(p, n)?.iter().enumerate() {
@@ -147,7 +189,18 @@ fn main() -> Result<()> {
             }
         }
     }
-    chapter.csv("ratios", &long)?;
+    Ok(Survey {
+        long,
+        first,
+        corner,
+        regular_min,
+        singular_points,
+    })
+}
+
+/// Table PS1 as the book shows it: one row per set-up and mesh, one column
+/// per degree.
+fn first_touch_table(first: &FirstTouch) -> Result<Table> {
     let mut wide = Table::new(
         [
             Column::plain("setup", "set-up"),
@@ -169,11 +222,13 @@ fn main() -> Result<()> {
             wide.push(row)?;
         }
     }
-    chapter.table("first_touch", &wide)?;
-    // ANCHOR_END: table
+    Ok(wide)
+}
+// ANCHOR_END: table
 
-    // The ratio where contact begins, against the degree, with the bounds
-    // of θ = 1 (ratio 1) and θ = 0 (ratio ¼).
+/// Fig. PS1: the ratio where contact begins, against the degree, with the
+/// bounds of θ = 1 (ratio 1) and θ = 0 (ratio ¼).
+fn draw_ratios(chapter: &Chapter, first: &FirstTouch) -> Result<()> {
     let mut series: Vec<Series> = SETUPS
         .iter()
         .enumerate()
@@ -200,62 +255,16 @@ fn main() -> Result<()> {
             log_y: true,
         },
         &series,
-    )?;
+    )
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// The prose of "(11) against the bound" quotes, per set-up, the range of
+/// Table PS1 on 16² and the order of C_T in p; and how much the Hertz
+/// ratios move with the mesh.
+fn record_ratio_facts(f: &mut Facts, first: &FirstTouch) -> Result<()> {
     for (is, key) in ["hertz", "taylor", "cylinders", "block"].iter().enumerate() {
-        let mine = first[is][1];
-        let lo = mine.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = mine.iter().copied().fold(0.0, f64::max);
-        f.number(&format!("{key}_first_min"), lo, Format::Fixed(2))?;
-        f.number(&format!("{key}_first_max"), hi, Format::Fixed(2))?;
-        // the bound of θ = 0 in the same units: 4 γ / C_T
-        f.number(
-            &format!("{key}_first_min_theta0"),
-            4.0 * lo,
-            Format::Fixed(2),
-        )?;
-        for (p, r) in DEGREES.iter().zip(mine) {
-            f.number(&format!("{key}_first_p{p}"), r, Format::Fixed(2))?;
-        }
-        // The growth of C_T with p, in units of E(1/h₁ + 1/h₂), which do not
-        // change with p on these meshes: c(p) = 0.1 (p+1)(p+d) / ratio. Its
-        // spread once divided by p², against its growth once divided by
-        // (p+1)², tells which of the two is the order of C_T; the limit of
-        // the ratio for large p is then 0.1 / (c/p²) at the top degree.
-        let c: Vec<f64> = DEGREES
-            .iter()
-            .zip(mine)
-            .map(|(&p, r)| 0.1 * ((p + 1) * (p + 2)) as f64 / r)
-            .collect();
-        let per = |k: fn(f64) -> f64| -> Vec<f64> {
-            DEGREES
-                .iter()
-                .zip(&c)
-                .map(|(&p, c)| c / k(p as f64))
-                .collect()
-        };
-        let by_p2 = per(|p| p * p);
-        let by_pp1 = per(|p| (p + 1.0) * (p + 1.0));
-        let (lo2, hi2) = by_p2
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
-        f.number(
-            &format!("{key}_ct_p2_spread"),
-            (hi2 - lo2) / lo2,
-            Format::Percent(1),
-        )?;
-        f.number(
-            &format!("{key}_ct_pp1_growth"),
-            by_pp1[by_pp1.len() - 1] / by_pp1[0],
-            Format::Fixed(1),
-        )?;
-        f.number(
-            &format!("{key}_first_limit"),
-            0.1 / by_p2[by_p2.len() - 1],
-            Format::Fixed(2),
-        )?;
+        record_setup_facts(f, key, first[is][1])?;
     }
     let spread = |is: usize| {
         DEGREES
@@ -264,13 +273,72 @@ fn main() -> Result<()> {
             .map(|(ip, _)| relative(first[is][0][ip], first[is][1][ip]).abs())
             .fold(0.0, f64::max)
     };
-    f.number("hertz_mesh_spread", spread(0), Format::Percent(0))?;
-    // ANCHOR_END: facts
+    f.number("hertz_mesh_spread", spread(0), Format::Percent(0))
+}
 
-    // ANCHOR: corner
-    // The degenerate corner of the nine-point disk: the Jacobian of the
-    // disk's map vanishes at the end of the slave arc, so the normal stress
-    // of the last element's shape functions grows without bound there.
+/// One set-up's facts, from its ratios at first touch on 16² (`mine`, one
+/// per degree).
+fn record_setup_facts(f: &mut Facts, key: &str, mine: [f64; 5]) -> Result<()> {
+    let lo = mine.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = mine.iter().copied().fold(0.0, f64::max);
+    f.number(&format!("{key}_first_min"), lo, Format::Fixed(2))?;
+    f.number(&format!("{key}_first_max"), hi, Format::Fixed(2))?;
+    // the bound of θ = 0 in the same units: 4 γ / C_T
+    f.number(
+        &format!("{key}_first_min_theta0"),
+        4.0 * lo,
+        Format::Fixed(2),
+    )?;
+    for (p, r) in DEGREES.iter().zip(mine) {
+        f.number(&format!("{key}_first_p{p}"), r, Format::Fixed(2))?;
+    }
+    // The growth of C_T with p, in units of E(1/h₁ + 1/h₂), which do not
+    // change with p on these meshes: c(p) = 0.1 (p+1)(p+d) / ratio. Its
+    // spread once divided by p², against its growth once divided by
+    // (p+1)², tells which of the two is the order of C_T; the limit of
+    // the ratio for large p is then 0.1 / (c/p²) at the top degree.
+    let c: Vec<f64> = DEGREES
+        .iter()
+        .zip(mine)
+        .map(|(&p, r)| 0.1 * ((p + 1) * (p + 2)) as f64 / r)
+        .collect();
+    let per = |k: fn(f64) -> f64| -> Vec<f64> {
+        DEGREES
+            .iter()
+            .zip(&c)
+            .map(|(&p, c)| c / k(p as f64))
+            .collect()
+    };
+    let by_p2 = per(|p| p * p);
+    let by_pp1 = per(|p| (p + 1.0) * (p + 1.0));
+    let (lo2, hi2) = by_p2
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(l, h), &v| (l.min(v), h.max(v)));
+    f.number(
+        &format!("{key}_ct_p2_spread"),
+        (hi2 - lo2) / lo2,
+        Format::Percent(1),
+    )?;
+    f.number(
+        &format!("{key}_ct_pp1_growth"),
+        by_pp1[by_pp1.len() - 1] / by_pp1[0],
+        Format::Fixed(1),
+    )?;
+    f.number(
+        &format!("{key}_first_limit"),
+        0.1 / by_p2[by_p2.len() - 1],
+        Format::Fixed(2),
+    )
+}
+// ANCHOR_END: facts
+
+// ANCHOR: corner
+/// "Where the map is singular": the degenerate corner of the nine-point
+/// disk. The Jacobian of the disk's map vanishes at the end of the slave
+/// arc, so the normal stress of the last element's shape functions grows
+/// without bound there.
+fn record_corner_facts(f: &mut Facts, survey: &Survey) -> Result<()> {
+    let corner = &survey.corner;
     let (f2, s2) = &corner[1]; // p = 2, 16²
     f.number("corner_ratio_p2", ratio(s2), Format::Pow10(0))?;
     f.number(
@@ -292,24 +360,36 @@ fn main() -> Result<()> {
     // away from the singular corner: the smallest ratio over the regular
     // points of the Hertz side (16², every degree), in units of the bound of
     // θ = 1 and of θ = 0
-    f.number("hertz_regular_min", regular_min, Format::Fixed(2))?;
+    f.number("hertz_regular_min", survey.regular_min, Format::Fixed(2))?;
     f.number(
         "hertz_regular_min_theta0",
-        4.0 * regular_min,
+        4.0 * survey.regular_min,
         Format::Fixed(2),
     )?;
     f.number(
         "hertz_singular_points",
-        singular_points as f64,
+        survey.singular_points as f64,
         Format::Fixed(0),
-    )?;
-    // ANCHOR_END: corner
+    )
+}
+// ANCHOR_END: corner
 
-    // ---------------------------------------------------------------
-    // 2. The sharp penalty as an option.
-    // ---------------------------------------------------------------
-    // ANCHOR: sharp
-    let mut sharp = Table::new(vec![
+// ANCHOR: sharp
+/// What the runs with (11) and with the sharp penalty give Table PS2 and
+/// its facts.
+struct SharpRuns {
+    table: Table,
+    /// [mesh][choice]: the spread of p₀ over θ, over the paper's p₀.
+    theta_spread: [[f64; 3]; 2],
+    /// θ = 1 with (11), per mesh: (active points below C_T, regular
+    /// inactive points below θ·C_T).
+    theta1_empirical: [(usize, usize); 2],
+}
+
+/// "The sharp penalty as an option": the Hertz disk with (11) and with the
+/// sharp penalty at safety factors 1 and 2, for the three θ.
+fn compare_sharp_penalty() -> Result<SharpRuns> {
+    let mut table = Table::new(vec![
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
         Column::plain("theta", "θ"),
         Column::plain("penalty", "penalty"),
@@ -329,9 +409,7 @@ fn main() -> Result<()> {
         ("sharp ×1", Penalty::Sharp, 1.0),
         ("sharp ×2", Penalty::Sharp, 2.0),
     ];
-    let mut theta_spread = [[0.0f64; 3]; 2]; // [mesh][choice]: spread of p₀ over θ
-                                             // θ = 1 with (11), per mesh: (active points below C_T, regular inactive
-                                             // points below θ·C_T)
+    let mut theta_spread = [[0.0f64; 3]; 2];
     let mut theta1_empirical = [(0usize, 0usize); 2];
     for (im, n) in [16usize, 32].into_iter().enumerate() {
         let paper = measure(&hertz(n, |_| ())?, &SolverOptions::default())?
@@ -365,7 +443,7 @@ fn main() -> Result<()> {
                     }
                     Err(kind) => ((*kind).into(), Cell::Empty, Cell::Empty, Cell::Empty),
                 };
-                sharp.push(vec![
+                table.push(vec![
                     n.into(),
                     theta.to_string().into(),
                     label.into(),
@@ -381,8 +459,17 @@ fn main() -> Result<()> {
             theta_spread[im][ic] = (hi - lo) / paper;
         }
     }
-    chapter.table("sharp", &sharp)?;
-    let f = chapter.facts();
+    Ok(SharpRuns {
+        table,
+        theta_spread,
+        theta1_empirical,
+    })
+}
+
+/// The prose under Table PS2 quotes how far the three θ spread p₀, and
+/// how many points θ = 1 with (11) leaves below its bound.
+fn record_sharp_facts(f: &mut Facts, sharp: &SharpRuns) -> Result<()> {
+    let theta_spread = &sharp.theta_spread;
     f.number(
         "theta_spread_empirical_16",
         theta_spread[0][0],
@@ -404,7 +491,7 @@ fn main() -> Result<()> {
         Format::Percent(1),
     )?;
     for (im, n) in [16usize, 32].into_iter().enumerate() {
-        let (active, inactive) = theta1_empirical[im];
+        let (active, inactive) = sharp.theta1_empirical[im];
         f.number(
             &format!("theta1_active_below_{n}"),
             active as f64,
@@ -416,12 +503,25 @@ fn main() -> Result<()> {
             Format::Fixed(0),
         )?;
     }
-    // ANCHOR_END: sharp
+    Ok(())
+}
+// ANCHOR_END: sharp
 
-    // ---------------------------------------------------------------
-    // 4. Small penalties: where the solution stops being unique.
-    // ---------------------------------------------------------------
-    // ANCHOR: small
+// ANCHOR: small
+/// What the sweep of small penalties gives Table PS5 and its facts.
+struct SmallSweep {
+    table: Table,
+    /// θ = 1: the fewest regular inactive points below θ·C_T over the
+    /// converged rows (a fact, not a column: the table is at the page's
+    /// width).
+    theta1_inactive: usize,
+    /// Per θ: the smallest factor from which on the solvers agree.
+    unique_from: [f64; 3],
+}
+
+/// "Small penalties: where the answer stops being unique": (11) scaled
+/// down on the Hertz disk (8², p = 2), solved by three solvers.
+fn sweep_small_penalties() -> Result<SmallSweep> {
     const FACTORS: [f64; 6] = [1e-4, 1e-3, 1e-2, 1e-1, 0.3, 1.0];
     let solvers = [
         ("bfgs", SolverOptions::default()),
@@ -441,8 +541,6 @@ fn main() -> Result<()> {
         Column::plain("zones", "zones"),
         Column::new("overlap", "overlap", Unit::Millimetre, Format::Fixed(3)),
     ]);
-    // θ = 1: the fewest regular inactive points below θ·C_T over the
-    // converged rows (a fact, not a column: the table is at the page's width)
     let mut theta1_inactive = usize::MAX;
     let mut unique_from = [f64::INFINITY; 3];
     for (it, theta) in Theta::ALL.into_iter().enumerate() {
@@ -507,19 +605,27 @@ fn main() -> Result<()> {
             }
         }
     }
-    chapter.table("small_penalty", &small)?;
-    let f = chapter.facts();
+    Ok(SmallSweep {
+        table: small,
+        theta1_inactive,
+        unique_from,
+    })
+}
+
+/// The bullets under Table PS5 quote, per θ, the factor from which on the
+/// solvers agree.
+fn record_small_facts(f: &mut Facts, small: &SmallSweep) -> Result<()> {
     f.number(
         "theta1_small_inactive_below_min",
-        theta1_inactive as f64,
+        small.theta1_inactive as f64,
         Format::Fixed(0),
     )?;
     for (it, key) in ["theta1", "theta0", "theta_minus1"].iter().enumerate() {
-        match unique_from[it] {
+        match small.unique_from[it] {
             v if v.is_finite() => f.number(&format!("{key}_agree_from"), v, Format::Pow10(0))?,
             _ => f.text(&format!("{key}_agree_from"), "never")?,
         }
     }
-    // ANCHOR_END: small
-    chapter.finish()
+    Ok(())
 }
+// ANCHOR_END: small

@@ -13,6 +13,7 @@
 
 use companion::chapter::Chapter;
 use companion::taylor::{consistency, patch_errors, Exact, PatchErrors, SIDE_SAMPLES};
+use companion::Facts;
 use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
 use iga_contact::error::Result;
@@ -126,6 +127,7 @@ fn exact(scene: &Scene) -> Exact {
 }
 // ANCHOR_END: solve
 
+/// The chapter "The Taylor contact patch test", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("taylor")?;
     let cases = [
@@ -133,9 +135,45 @@ fn main() -> Result<()> {
         solve_case(Integration::Gauss)?,
     ];
     let segment = &cases[0];
+    // The paper's 0.13 % is the largest value of its error map, so ours is
+    // the largest value of our map (sub-cell centres), not the Gauss-point
+    // maximum of Table T1, which samples the field at other points.
+    let map_max = cases.each_ref().map(syy_map_max);
 
-    // ANCHOR: tables
-    // summary.csv keeps exactly the columns other tools read.
+    // Results: Tables T1 and T2.
+    write_results(&mut chapter, &cases)?;
+
+    // Comparison with the paper: Tables T3 to T6.
+    write_comparison(&mut chapter, &cases, map_max)?;
+
+    // The numbers the prose quotes.
+    let f = chapter.facts();
+    record_paper_facts(f, &cases, map_max)?;
+    record_case_facts(f, &cases)?;
+
+    // Figs. T1 to T3 and the VTU.
+    mesh_figure(&chapter, segment)?;
+    displacement_figure(&chapter, segment)?;
+    error_figures(&chapter, &cases)?;
+    write_vtu(&chapter, segment)?;
+    chapter.finish()
+}
+
+/// The largest displacement of a case's last iteration: the quantity of
+/// the last row of the paper's Table 1.
+fn max_u(c: &Case) -> f64 {
+    c.solution
+        .history
+        .rows
+        .last()
+        .map_or(f64::NAN, |r| r.max_displacement)
+}
+
+// ANCHOR: tables
+/// "Results": Tables T1 (`summary`) and T2 (`errors`), one row per
+/// integration rule. summary.csv keeps exactly the columns other tools
+/// read.
+fn write_results(chapter: &mut Chapter, cases: &[Case; 2]) -> Result<()> {
     let mut summary = Table::new(vec![
         Column::plain("integration", "integration"),
         Column::plain("iterations", "BFGS iterations"),
@@ -182,7 +220,7 @@ fn main() -> Result<()> {
         .csv_only(),
         Column::new("force_error", "force error", Unit::None, Format::Sci(2)),
     ]);
-    for c in &cases {
+    for c in cases {
         let e = &c.errors;
         let name = rule_name(c.rule);
         summary.push(vec![
@@ -202,17 +240,31 @@ fn main() -> Result<()> {
         ])?;
     }
     chapter.table("summary", &summary)?;
-    chapter.table("errors", &errors)?;
+    chapter.table("errors", &errors)
+}
 
-    // The paper's numbers beside ours, each labelled with where the paper
-    // gives it (Table T3 of the chapter).
+/// "Comparison with the paper": Table T3 (the paper's numbers beside
+/// ours), T4 (the paper's history) and T5, T6 (ours).
+fn write_comparison(chapter: &mut Chapter, cases: &[Case; 2], map_max: [f64; 2]) -> Result<()> {
+    chapter.table("paper_beside_ours", &paper_beside_ours(cases, map_max)?)?;
+    chapter.table("iterations_paper", &paper_history()?)?;
+    for c in cases {
+        let t = history_table(&c.solution.history, Unit::NewtonPerMetre, Unit::Metre)?;
+        chapter.table(&format!("iterations_{}", rule_name(c.rule)), &t)?;
+    }
+    Ok(())
+}
+
+/// Table T3: the paper's numbers beside ours, each labelled with where
+/// the paper gives it.
+fn paper_beside_ours(cases: &[Case; 2], map_max: [f64; 2]) -> Result<Table> {
     let mut beside = Table::new(vec![
         Column::plain("quantity", "quantity"),
         Column::plain("paper", "the paper"),
         Column::plain("segment", "ours, segment"),
         Column::plain("gauss", "ours, Gauss points"),
     ]);
-    let gauss = &cases[1];
+    let [segment, gauss] = cases;
     let percent = |v: f64| Format::Percent(2).render(v);
     beside.push(vec![
         "quasi-Newton iterations (the paper's Table 1)".into(),
@@ -220,10 +272,6 @@ fn main() -> Result<()> {
         segment.solution.history.len().into(),
         gauss.solution.history.len().into(),
     ])?;
-    // The paper's 0.13 % is the largest value of its error map, so ours is
-    // the largest value of our map (sub-cell centres), not the Gauss-point
-    // maximum of Table T1, which samples the field at other points.
-    let map_max = cases.each_ref().map(syy_map_max);
     beside.push(vec![
         "largest value of the σ_yy error map, |σ_yy + p|/p (the paper's Fig. 3)".into(),
         percent(PAPER_SYY_ERROR).into(),
@@ -232,21 +280,17 @@ fn main() -> Result<()> {
     ])?;
     // The paper's column is the largest displacement of its iteration
     // table, so ours is the same quantity of our last iteration.
-    let max_u = |c: &Case| {
-        c.solution
-            .history
-            .rows
-            .last()
-            .map_or(f64::NAN, |r| r.max_displacement)
-    };
     beside.push(vec![
         "max u, m (the paper's Table 1, last row)".into(),
         PAPER_TABLE_1[PAPER_TABLE_1.len() - 1].3.into(),
         Format::Fixed(5).render(max_u(segment)).into(),
         Format::Fixed(5).render(max_u(gauss)).into(),
     ])?;
-    chapter.table("paper_beside_ours", &beside)?;
+    Ok(beside)
+}
 
+/// Table T4: the rows of the paper's Table 1 that survived, as printed.
+fn paper_history() -> Result<Table> {
     let mut paper = Table::new(vec![
         Column::plain("iteration", "it."),
         Column::new("residual", "‖R‖", Unit::None, Format::Plain),
@@ -256,21 +300,22 @@ fn main() -> Result<()> {
     for (k, r, du, u) in PAPER_TABLE_1 {
         paper.push(vec![k.into(), r.into(), du.into(), u.into()])?;
     }
-    chapter.table("iterations_paper", &paper)?;
-    for c in &cases {
-        let t = history_table(&c.solution.history, Unit::NewtonPerMetre, Unit::Metre)?;
-        chapter.table(&format!("iterations_{}", rule_name(c.rule)), &t)?;
-    }
-    // ANCHOR_END: tables
+    Ok(paper)
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR_END: tables
+
+// ANCHOR: facts
+/// "Comparison with the paper" quotes the paper's numbers, on the scales
+/// of ours, and what its own history says.
+fn record_paper_facts(f: &mut Facts, cases: &[Case; 2], map_max: [f64; 2]) -> Result<()> {
+    let [segment, gauss] = cases;
     f.count("paper_iterations", PAPER_ITERATIONS)?;
     f.number("paper_syy_error", PAPER_SYY_ERROR, Format::Percent(2))?;
     f.number("paper_syy_log10", PAPER_SYY_ERROR.log10(), Format::Fixed(2))?;
     f.number(
         "gauss_syy_log10",
-        cases[1].errors.syy.log10(),
+        gauss.errors.syy.log10(),
         Format::Fixed(2),
     )?;
     f.number("gauss_map_log10", map_max[1].log10(), Format::Fixed(2))?;
@@ -294,8 +339,13 @@ fn main() -> Result<()> {
         "paper_later_update_ratio",
         later / first_update,
         Format::Pow10(1),
-    )?;
-    for c in &cases {
+    )
+}
+
+/// "The program" and "Results" quote each rule's errors and iterations,
+/// and what the measures sample.
+fn record_case_facts(f: &mut Facts, cases: &[Case; 2]) -> Result<()> {
+    for c in cases {
         let name = rule_name(c.rule);
         let e = &c.errors;
         f.count(&format!("{name}_iterations"), c.solution.history.len())?;
@@ -312,15 +362,19 @@ fn main() -> Result<()> {
         let first = c.solution.history.rows[0].relative_residual;
         f.number(&format!("{name}_first_residual"), first, Format::Pow10(0))?;
     }
+    let segment = &cases[0];
     f.count("gauss_points_checked", segment.errors.gauss_points)?;
     f.count("side_samples", SIDE_SAMPLES)?;
     // the exact state widens the blocks by ε_xx = ν p / E
     let widening = segment.exact.displacement([1.0, 0.0])[0];
-    f.number("relative_widening", widening, Format::Percent(0))?;
-    // ANCHOR_END: facts
+    f.number("relative_widening", widening, Format::Percent(0))
+}
+// ANCHOR_END: facts
 
-    // ANCHOR: figures
-    // Fig. 1: element boundaries and control nets of both blocks.
+// ANCHOR: figures
+/// Fig. T1 (the paper's Fig. 1): element boundaries and control nets of
+/// both blocks.
+fn mesh_figure(chapter: &Chapter, segment: &Case) -> Result<()> {
     let mut lines = Vec::new();
     for (b, body) in segment.problem.bodies.iter().enumerate() {
         let patch = &body.space.patch;
@@ -342,13 +396,15 @@ fn main() -> Result<()> {
             lo[0], lo[1], up[0], up[1]
         ),
         &lines,
-    )?;
+    )
+}
 
-    // Fig. 2: u_y on the deformed blocks, the undeformed outlines dashed.
-    let full = &segment.solution.full;
+/// Fig. T2 (the paper's Fig. 2): u_y on the deformed blocks, the
+/// undeformed outlines dashed.
+fn displacement_figure(chapter: &Chapter, segment: &Case) -> Result<()> {
     let cells = field_cells(
         &segment.problem,
-        full,
+        &segment.solution.full,
         MAP_SUBCELLS,
         Placement::Deformed,
         |p| p.displacement[1],
@@ -368,10 +424,13 @@ fn main() -> Result<()> {
         "u_y (m)",
         &cells,
         &outlines,
-    )?;
+    )
+}
 
-    // Fig. 3: log10 of the relative σ_yy error, clamped at round-off.
-    for c in &cases {
+/// Fig. T3 (the paper's Fig. 3): log10 of the relative σ_yy error, clamped
+/// at round-off, one map per rule.
+fn error_figures(chapter: &Chapter, cases: &[Case; 2]) -> Result<()> {
+    for c in cases {
         let p = c.exact.pressure;
         let cells = field_cells(
             &c.problem,
@@ -398,8 +457,18 @@ fn main() -> Result<()> {
             &grid,
         )?;
     }
-    sample_bodies(&segment.problem.bodies, &segment.problem.map, full, 4)?
-        .write(chapter.path("taylor.vtu"))?;
-    // ANCHOR_END: figures
-    chapter.finish()
+    Ok(())
 }
+
+/// The segment solution for a viewer (Figs. T1 and T2 are drawn from the
+/// same case).
+fn write_vtu(chapter: &Chapter, segment: &Case) -> Result<()> {
+    sample_bodies(
+        &segment.problem.bodies,
+        &segment.problem.map,
+        &segment.solution.full,
+        4,
+    )?
+    .write(chapter.path("taylor.vtu"))
+}
+// ANCHOR_END: figures
