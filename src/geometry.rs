@@ -334,6 +334,43 @@ pub fn disk_5(center: [f64; 2], r: f64) -> Result<MultiPatch> {
     })
 }
 
+/// [`disk_5`] turned by −45° about its centre: the core's corners lie on
+/// the axes through the centre and the arc patches are the four quadrants,
+/// lower left (patch 1, 180° to 270°), lower right (2), upper right (3)
+/// and upper left (4), so the vertical centre line runs through patch
+/// corners (the core's top and bottom corners, the lowest and highest
+/// points), where a point support can hold the disk in x as a symmetry
+/// line would. Boundaries: `arc` (counter-clockwise from 180°),
+/// `arc_lower` (180° to 360°: patches 1 and 2), `arc_upper` (0° to 180°),
+/// `arc_right` (270° to 90°) and `arc_left` (90° to 270°). Refined as
+/// [`disk_5`].
+pub fn disk_5_diagonal(center: [f64; 2], r: f64) -> Result<MultiPatch> {
+    check_positive("radius", r)?;
+    use crate::nurbs::Side::EtaMax;
+    let (c, s) = (
+        std::f64::consts::FRAC_1_SQRT_2,
+        -std::f64::consts::FRAC_1_SQRT_2,
+    );
+    let turned = unit_disk_5(false)?
+        .into_iter()
+        .map(|p| p.transformed(|x| [c * x[0] - s * x[1], s * x[0] + c * x[1]]))
+        .collect();
+    Ok(MultiPatch {
+        patches: placed(turned, center, r),
+        boundaries: vec![
+            (
+                "arc",
+                vec![(1, EtaMax), (2, EtaMax), (3, EtaMax), (4, EtaMax)],
+            ),
+            ("arc_lower", vec![(1, EtaMax), (2, EtaMax)]),
+            ("arc_upper", vec![(3, EtaMax), (4, EtaMax)]),
+            ("arc_right", vec![(2, EtaMax), (3, EtaMax)]),
+            ("arc_left", vec![(4, EtaMax), (1, EtaMax)]),
+        ],
+        counts: arc_counts(5),
+    })
+}
+
 /// The half disk {x ≥ cx} of radius `r` about `center` as four patches
 /// without a singular point: the right halves of [`disk_5`]'s core
 /// (patch 0), lower arc patch (1, from 270° to 315°) and upper arc patch

@@ -514,3 +514,95 @@ fn a_zone_cut_at_the_end_of_a_one_patch_piece_is_warned_and_the_advice_clears_it
     let join = R * std::f64::consts::FRAC_1_SQRT_2;
     assert!(a > join && a > a_cut, "{a} against {a_cut} and {join}");
 }
+
+#[test]
+fn diagonal_five_patch_disk_is_exact_with_corners_on_the_centre_line() {
+    let mp = iga_contact::geometry::disk_5_diagonal(C, R).unwrap();
+    for elements in [[1, 1], [4, 2], [8, 8]] {
+        let b = bodies_q(&mp, 2, elements, Some(14));
+        assert!(rel(area(&b), PI * R * R) < 1e-12, "{}", area(&b));
+        let arc = length(&b, mp.boundary("arc").unwrap());
+        assert!(rel(arc, 2.0 * PI * R) < 1e-12, "{arc}");
+        for half in ["arc_lower", "arc_upper", "arc_left", "arc_right"] {
+            let l = length(&b, mp.boundary(half).unwrap());
+            assert!(rel(l, PI * R) < 1e-12, "{half}: {l}");
+        }
+    }
+    // the lower half runs from 180° to 360°: from (cx − R, cy) through the
+    // lowest point, a patch corner, to (cx + R, cy)
+    let lower = mp.boundary("arc_lower").unwrap();
+    let (first, last) = (lower[0], lower[lower.len() - 1]);
+    let start = mp.patches[first.0].side_curve(first.1);
+    let end = mp.patches[last.0].side_curve(last.1);
+    let at = |c: &iga_contact::nurbs::NurbsCurve, t: f64| c.point(t);
+    let a = at(&start, start.knots.first());
+    let z = at(&end, end.knots.last());
+    let lowest = at(&start, start.knots.last());
+    for (got, want) in [
+        (a, [C[0] - R, C[1]]),
+        (z, [C[0] + R, C[1]]),
+        (lowest, [C[0], C[1] - R]),
+    ] {
+        assert!(
+            (got[0] - want[0]).hypot(got[1] - want[1]) < 1e-15,
+            "{got:?}"
+        );
+    }
+    // the core's top and bottom corners lie on the vertical centre line
+    let core = &mp.patches[0];
+    let on_line = core
+        .points
+        .iter()
+        .filter(|p| (p[0] - C[0]).abs() < 1e-15 && (p[1] - C[1]).abs() > 0.5 * R)
+        .count();
+    assert_eq!(on_line, 2);
+}
+
+/// The full five-patch disk of `disk_full.toml`, held in x at two points
+/// of its vertical centre line only, against the four-patch half disk with
+/// its symmetry support (`hertz_multipatch.toml`), at the same penalty and
+/// the same element density near the lowest point (n elements on a quarter
+/// of the full disk's circle, n/2 on the half disk's 45° patch): p₀ and a
+/// agree to discretisation accuracy, and more closely on the finer mesh;
+/// the shipped scene runs without a warning and its contact force
+/// balances the load on the whole disk.
+#[test]
+fn the_full_disk_on_point_supports_matches_the_half_disk_with_symmetry() {
+    let measure = |file: &str, elements: [usize; 2]| {
+        let scene = companion::shipped(file)
+            .unwrap()
+            .refined("disk", RefineSpec::iga(2, elements))
+            .unwrap()
+            .with_nitsche(|x| x.penalty_factor = 3.0);
+        let problem = scene.build().unwrap();
+        let sol = solve(&problem, &scene.solver).unwrap();
+        let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
+        let m = profile.measures_joined(problem.contacts.pieces(0));
+        (m.p0, m.half_width, sol.warnings)
+    };
+    let shipped = companion::shipped("disk_full.toml").unwrap();
+    assert!(shipped
+        .supports
+        .iter()
+        .all(|s| s.point.is_some() && s.side.is_none() && s.boundary.is_none()));
+    let mut gaps = Vec::new();
+    for n in [16, 32] {
+        let (p_full, a_full, w) = measure("disk_full.toml", [n, n / 2]);
+        assert!(w.is_empty(), "{n}: {w:?}");
+        let (p_half, a_half, _) = measure("hertz_multipatch.toml", [n / 2, n / 2]);
+        gaps.push((rel(p_full, p_half), rel(a_full, a_half)));
+    }
+    let (coarse, fine) = (gaps[0], gaps[1]);
+    assert!(fine.0 < 1e-3 && fine.0 < 0.25 * coarse.0, "p₀: {gaps:?}");
+    assert!(fine.1 < 0.02 && fine.1 < coarse.1, "a: {gaps:?}");
+    let report = shipped
+        .check(&iga_contact::resources::Budget::from_machine())
+        .unwrap();
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    let problem = shipped.build().unwrap();
+    let sol = solve(&problem, &shipped.solver).unwrap();
+    assert!(sol.warnings.is_empty(), "{:?}", sol.warnings);
+    let f = iga_contact::post::contact_resultant(&problem, &sol.full);
+    let load = 1.3e6 * PI * R * R;
+    assert!(rel(f[1], load) < 1e-8 && f[0].abs() < 1e-8 * load, "{f:?}");
+}

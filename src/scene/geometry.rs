@@ -22,11 +22,20 @@ pub enum GeometrySpec {
     FullDisk { center: [f64; 2], radius: f64 },
     /// The half x ≥ center.x of the disk.
     HalfDisk { center: [f64; 2], radius: f64 },
-    /// The disk as five patches without a singular point
-    /// ([`geometry::disk_5`]); boundaries `arc`, `arc_bottom`, `arc_right`,
-    /// `arc_top`, `arc_left`, `arc_lower`.
+    /// The disk as five patches without a singular point: with
+    /// `layout = "axes"` (the default) the core's sides face the axes
+    /// ([`geometry::disk_5`]; boundaries `arc`, `arc_bottom`, `arc_right`,
+    /// `arc_top`, `arc_left`, `arc_lower`); with `"diagonal"` its corners
+    /// do, so that patch corners lie on the vertical centre line
+    /// ([`geometry::disk_5_diagonal`]; boundaries `arc`, `arc_lower`,
+    /// `arc_upper`, `arc_right`, `arc_left`).
     #[serde(rename = "disk_5")]
-    Disk5 { center: [f64; 2], radius: f64 },
+    Disk5 {
+        center: [f64; 2],
+        radius: f64,
+        #[serde(default)]
+        layout: DiskLayout,
+    },
     /// The half x ≥ center.x of the disk as four patches without a
     /// singular point ([`geometry::half_disk_4`]); boundaries `straight`,
     /// `arc`, `arc_lower`, `arc_bottom`.
@@ -39,6 +48,18 @@ pub enum GeometrySpec {
     },
     /// A general patch: control point (i, j) at index i + j·n_ξ.
     Nurbs(NurbsSpec),
+}
+
+/// How the five patches of `disk_5` sit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DiskLayout {
+    /// The core's sides face the axes: arc patches centred below, right,
+    /// above and left of the centre.
+    #[default]
+    Axes,
+    /// The core's corners face the axes: the arc patches are the quadrants.
+    Diagonal,
 }
 
 /// A general NURBS patch.
@@ -169,7 +190,7 @@ impl GeometrySpec {
             }
             GeometrySpec::FullDisk { center, radius }
             | GeometrySpec::HalfDisk { center, radius }
-            | GeometrySpec::Disk5 { center, radius }
+            | GeometrySpec::Disk5 { center, radius, .. }
             | GeometrySpec::HalfDisk4 { center, radius } => {
                 finite_point(&format!("{f}.center"), *center)?;
                 positive(format!("{f}.radius"), *radius)?;
@@ -210,7 +231,16 @@ impl GeometrySpec {
     /// for the one-patch kinds.
     pub fn multipatch(&self) -> Option<Result<geometry::MultiPatch>> {
         match *self {
-            GeometrySpec::Disk5 { center, radius } => Some(geometry::disk_5(center, radius)),
+            GeometrySpec::Disk5 {
+                center,
+                radius,
+                layout: DiskLayout::Axes,
+            } => Some(geometry::disk_5(center, radius)),
+            GeometrySpec::Disk5 {
+                center,
+                radius,
+                layout: DiskLayout::Diagonal,
+            } => Some(geometry::disk_5_diagonal(center, radius)),
             GeometrySpec::HalfDisk4 { center, radius } => {
                 Some(geometry::half_disk_4(center, radius))
             }

@@ -50,7 +50,7 @@ mod summary;
 mod validate;
 
 pub use check::CheckReport;
-pub use geometry::{GeometrySpec, NurbsSpec};
+pub use geometry::{DiskLayout, GeometrySpec, NurbsSpec};
 pub use refine::RefineSpec;
 pub use schema::{
     files, BodySpec, Component, ContactSpec, LoadSpec, MasterSpec, OutputSpec, Scene, SegmentSpec,
