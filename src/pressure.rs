@@ -140,7 +140,24 @@ impl SplinePressure {
 
     /// The non-zero pressure functions at (ξ, η), as (index, value).
     pub fn basis(&self, xi: f64, eta: f64) -> Vec<(usize, f64)> {
-        let span = [self.knots[0].find_span(xi), self.knots[1].find_span(eta)];
+        self.basis_in_spans(
+            [self.knots[0].find_span(xi), self.knots[1].find_span(eta)],
+            xi,
+            eta,
+        )
+    }
+
+    /// The pressure functions of the displacement element whose knot spans
+    /// are `spans` ([`crate::space::Element::spans`]), at (ξ, η). On the
+    /// element's edges this stays with the element's own functions, where
+    /// [`SplinePressure::basis`] takes the span to the right of a knot,
+    /// whose functions the element's stress does not reach.
+    pub fn basis_on_element(&self, spans: [usize; 2], xi: f64, eta: f64) -> Vec<(usize, f64)> {
+        // the pressure knots drop the first knot: span s becomes s − 1
+        self.basis_in_spans(spans.map(|s| s - 1), xi, eta)
+    }
+
+    fn basis_in_spans(&self, span: [usize; 2], xi: f64, eta: f64) -> Vec<(usize, f64)> {
         let bx = self.knots[0].basis_ders(span[0], xi, 0);
         let by = self.knots[1].basis_ders(span[1], eta, 0);
         let first = [0, 1].map(|d| span[d] - self.knots[d].degree());
@@ -156,8 +173,18 @@ impl SplinePressure {
     /// θ̄(ξ, η) as a functional over the body's DOFs (2·cp + component),
     /// sorted: Σ_i N̂_i(ξ, η) ĝ_i / m̂_i.
     pub fn theta_row(&self, xi: f64, eta: f64) -> Vec<(usize, f64)> {
+        self.theta_of(self.basis(xi, eta))
+    }
+
+    /// As [`SplinePressure::theta_row`], with the functions of the element
+    /// of knot spans `spans` ([`SplinePressure::basis_on_element`]).
+    pub fn theta_row_on_element(&self, spans: [usize; 2], xi: f64, eta: f64) -> Vec<(usize, f64)> {
+        self.theta_of(self.basis_on_element(spans, xi, eta))
+    }
+
+    fn theta_of(&self, basis: Vec<(usize, f64)>) -> Vec<(usize, f64)> {
         let mut row: Vec<(usize, f64)> = Vec::new();
-        for (i, v) in self.basis(xi, eta) {
+        for (i, v) in basis {
             let c = v / self.mass[i];
             row.extend(self.div[i].iter().map(|&(d, g)| (d, c * g)));
         }

@@ -114,7 +114,8 @@ impl<'a> ElementStress<'a> {
             }
             Dilatation::Spline(sp) => {
                 let mut out = vec![0.0; 2 * self.cps.len()];
-                for (d, v) in sp.theta_row(xi, eta) {
+                let spans = self.body.space.elements[self.element].spans;
+                for (d, v) in sp.theta_row_on_element(spans, xi, eta) {
                     let k = self
                         .cps
                         .iter()

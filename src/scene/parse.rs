@@ -44,20 +44,68 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// serde's words for a shape error, in the scene's terms: what was
+/// expected and what was found, without Rust type names.
+fn plain(message: &str) -> String {
+    let message = message.trim().replace('\n', " ");
+    match message.as_str() {
+        "wanted exactly 1 element, found 0 elements" => {
+            return "name exactly one kind (the table is empty)".into()
+        }
+        "wanted exactly 1 element, more than 1 element" => {
+            return "name exactly one kind, not several".into()
+        }
+        "invalid type: unit variant, expected string only" => {
+            return "expected a table with one key, the kind".into()
+        }
+        _ => {}
+    }
+    let shape = ["invalid type: ", "invalid value: "]
+        .iter()
+        .find_map(|p| message.strip_prefix(p))
+        .and_then(|rest| rest.split_once(", expected "));
+    let Some((found, expected)) = shape else {
+        return message;
+    };
+    let expected = match expected {
+        "usize" | "u64" | "u32" => "a non-negative integer",
+        "f64" | "f32" => "a number",
+        "a boolean" | "bool" => "true or false",
+        e if e.starts_with("struct ") => "a table",
+        e => e,
+    };
+    format!("expected {expected}, found {found}")
+}
+
 fn syntax_error(text: &str, e: toml::de::Error) -> Error {
+    let mut reason = format!("not valid TOML: {}", e.message().trim().replace('\n', " "));
     let (field, value) = match e.span() {
         Some(span) => {
-            let (line, col) = line_col(text, span.start);
+            let (mut line, mut col) = line_col(text, span.start);
+            // an inline table cannot go on to the next line (an array
+            // can), so an error found at the start of a line after one that
+            // leaves a brace open belongs to that line
+            let open = |l: &str| l.matches('{').count() > l.matches('}').count();
+            if col == 1 && line > 1 {
+                let lines: Vec<&str> = text.lines().take(line - 1).collect();
+                if let Some((k, prev)) = lines
+                    .iter()
+                    .enumerate()
+                    .rev()
+                    .find(|(_, l)| !l.trim().is_empty())
+                    .filter(|(_, l)| open(l))
+                {
+                    line = k + 1;
+                    col = prev.chars().count() + 1;
+                    reason.push_str(" (an inline table opened on this line is not closed on it)");
+                }
+            }
             let source = text.lines().nth(line - 1).unwrap_or("").trim();
             (format!("line {line}, column {col}"), shorten(source.into()))
         }
         None => ("scene".into(), "(the scene text)".into()),
     };
-    Error::invalid(
-        field,
-        value,
-        format!("not valid TOML: {}", e.message().trim().replace('\n', " ")),
-    )
+    Error::invalid(field, value, reason)
 }
 
 /// An error in the choice of keys of one table (`refine`, `master`),
@@ -126,7 +174,7 @@ impl Scene {
                 Some((key, value, reason)) => {
                     Error::invalid(format!("{field}.{key}"), value, reason)
                 }
-                None => Error::invalid(field, shown, message.trim().replace('\n', " ")),
+                None => Error::invalid(field, shown, plain(&message)),
             }
         })?;
         scene.validate()?;

@@ -2,7 +2,7 @@
 
 use super::kinds::{Counted, Warning, RESOLVED};
 use super::penalty::penalty_warnings;
-use super::setup::setup_warnings;
+use super::setup::{defer_penalty_to_locking, setup_warnings};
 use super::side_end::zones_at_side_end;
 use crate::contact::{ContactPoint, Role};
 use crate::problem::Problem;
@@ -20,6 +20,7 @@ pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
         Counted::Solution,
         |q, _| p[q] <= 0.0,
     ));
+    defer_penalty_to_locking(&mut out, &problem.bodies, &problem.pairs, contacts);
     // below the bound the active set itself is in doubt: that one cause is
     // reported, not the extent of the zone it produces
     let doubtful: Vec<usize> = out
