@@ -31,9 +31,10 @@ pub(crate) fn failure(
                 .collect::<Vec<_>>()
                 .join(", ")
         ));
-        // measured: Hertz 8×8, θ = 0, penalty factor 0.71 cycles with
-        // period 6 from the tied start and converges in 9 iterations from
-        // the secant one (tests/solver.rs)
+        // measured: Hertz p = 3 on 8² cycles with period 7 from the tied
+        // start and converges from the secant one (tests/solver.rs); by
+        // hand, hertz.toml at penalty factor 0.71 cycles with period 6 and
+        // converges in 9 iterations after the advice
         if start == Start::Tied {
             parts.push(
                 "the tied start (17) cycles between active sets here: set solver.start = \"secant\" \
