@@ -170,14 +170,10 @@ impl SplinePressure {
         out
     }
 
-    /// θ̄(ξ, η) as a functional over the body's DOFs (2·cp + component),
-    /// sorted: Σ_i N̂_i(ξ, η) ĝ_i / m̂_i.
-    pub fn theta_row(&self, xi: f64, eta: f64) -> Vec<(usize, f64)> {
-        self.theta_of(self.basis(xi, eta))
-    }
-
-    /// As [`SplinePressure::theta_row`], with the functions of the element
-    /// of knot spans `spans` ([`SplinePressure::basis_on_element`]).
+    /// θ̄(ξ, η) in the element of knot spans `spans` as a functional over
+    /// the body's DOFs (2·cp + component), sorted: Σ_i N̂_i(ξ, η) ĝ_i / m̂_i
+    /// over the element's own functions ([`SplinePressure::basis_on_element`]),
+    /// so that on its edges it reaches only the DOFs its stress does.
     pub fn theta_row_on_element(&self, spans: [usize; 2], xi: f64, eta: f64) -> Vec<(usize, f64)> {
         self.theta_of(self.basis_on_element(spans, xi, eta))
     }
