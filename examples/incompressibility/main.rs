@@ -12,6 +12,7 @@
 use companion::{hertz, lame};
 
 use companion::chapter::Chapter;
+use companion::Facts;
 use iga_contact::assembly::ElementStress;
 use iga_contact::contact::Penalty;
 use iga_contact::error::Result;
@@ -108,10 +109,34 @@ fn mean_pressure(problem: &Problem, sol: &Solution, x_max: f64) -> Result<Vec<(f
     Ok(out)
 }
 
+/// The chapter "Near incompressibility", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("incompressibility")?;
 
-    // ANCHOR: axis
+    // Hertz along the ν axis: Table IN1, Fig. IN1.
+    let runs = solve_axis()?;
+    chapter.table("hertz_axis", &axis_table(&runs)?)?;
+    draw_p0_error(&chapter, &runs)?;
+
+    // Lamé's cylinder: Table IN2.
+    let lame = solve_lame()?;
+    chapter.table("lame", &lame.table)?;
+
+    // The pressure along the contact: Fig. IN2.
+    let mean = solve_mean_stress()?;
+    draw_mean_stress(&chapter, &mean.curves)?;
+
+    // The facts of the three sections.
+    record_setup_facts(chapter.facts(), mean.half_width)?;
+    record_axis_facts(chapter.facts(), &runs)?;
+    record_lame_facts(chapter.facts(), &lame.finest_rates)?;
+    chapter.finish()
+}
+
+// ANCHOR: axis
+/// "Hertz along the ν axis": every degree, Poisson's ratio and
+/// formulation, solved by Newton.
+fn solve_axis() -> Result<Vec<Run>> {
     let mut runs = Vec::new();
     for &p in &DEGREES {
         for &nu in &POISSON {
@@ -120,7 +145,13 @@ fn main() -> Result<()> {
             }
         }
     }
-    // ANCHOR_END: axis
+    Ok(runs)
+}
+// ANCHOR_END: axis
+
+/// Table IN1: iterations and the errors of p₀ and a against Hertz, run by
+/// run.
+fn axis_table(runs: &[Run]) -> Result<Table> {
     let mut table = Table::new(vec![
         Column::new("poisson", "ν", Unit::None, Format::Plain),
         Column::plain("degree", "p"),
@@ -139,15 +170,19 @@ fn main() -> Result<()> {
             Format::SignedPercent(1),
         ),
     ]);
-    for r in &runs {
+    for r in runs {
         let (ep, ea, it): (Cell, Cell, Cell) = match r.errors {
             Some((ep, ea, it)) => (ep.into(), ea.into(), it.into()),
             None => (Cell::Empty, Cell::Empty, "failed".into()),
         };
         table.push(vec![r.nu.into(), r.p.into(), r.name.into(), it, ep, ea])?;
     }
-    chapter.table("hertz_axis", &table)?;
+    Ok(table)
+}
 
+/// Fig. IN1: the p₀ error against ½ − ν, one curve per degree and
+/// formulation.
+fn draw_p0_error(chapter: &Chapter, runs: &[Run]) -> Result<()> {
     let mut series = Vec::new();
     for (k, &p) in DEGREES.iter().enumerate() {
         for (j, (_, name)) in FORMULATIONS.iter().enumerate() {
@@ -172,9 +207,21 @@ fn main() -> Result<()> {
             log_y: true,
         },
         &series,
-    )?;
+    )
+}
 
-    // ANCHOR: lame
+// ANCHOR: lame
+/// What Lamé's cylinder gives Table IN2 and its facts.
+struct LameStudy {
+    table: Table,
+    /// The rates between the two finest meshes: (ν, formulation, p, L²,
+    /// energy).
+    finest_rates: Vec<(f64, &'static str, usize, f64, f64)>,
+}
+
+/// "Lamé's cylinder": the three formulations at ν = 0.3 and 0.49999, p = 2
+/// and 3, on 4² … 32², with the observed rates.
+fn solve_lame() -> Result<LameStudy> {
     let mut lame_table = Table::new(vec![
         Column::new("poisson", "ν", Unit::None, Format::Plain),
         Column::plain("formulation", "formulation"),
@@ -185,8 +232,7 @@ fn main() -> Result<()> {
         Column::new("l2_rate", "L² rate", Unit::None, Format::Fixed(2)),
         Column::new("energy_rate", "energy rate", Unit::None, Format::Fixed(2)),
     ]);
-    // the rates between the two finest meshes: (ν, formulation, p, L², energy)
-    let mut finest_rates: Vec<(f64, &str, usize, f64, f64)> = Vec::new();
+    let mut finest_rates = Vec::new();
     for nu in [0.3, 0.49999] {
         for (formulation, name) in FORMULATIONS {
             for p in [2, 3] {
@@ -228,11 +274,27 @@ fn main() -> Result<()> {
             }
         }
     }
-    chapter.table("lame", &lame_table)?;
-    // ANCHOR_END: lame
+    Ok(LameStudy {
+        table: lame_table,
+        finest_rates,
+    })
+}
+// ANCHOR_END: lame
 
-    // the mean stress along the contact side, p = 2, ν = 0.49999
-    let nu = 0.49999;
+/// Poisson's ratio of "The pressure along the contact".
+const NEAR_HALF: f64 = 0.49999;
+
+/// The curves of Fig. IN2 and the Hertz half-width they are drawn to.
+struct MeanStress {
+    curves: Vec<Series>,
+    /// Hertz's a at ν = `NEAR_HALF`.
+    half_width: f64,
+}
+
+/// "The pressure along the contact": the mean stress along the contact
+/// side, p = 2, ν = `NEAR_HALF`, for the three formulations and Hertz.
+fn solve_mean_stress() -> Result<MeanStress> {
+    let nu = NEAR_HALF;
     let mut curves = Vec::new();
     let mut exact_a = 0.0;
     for (k, f) in FORMULATIONS.iter().enumerate() {
@@ -258,23 +320,39 @@ fn main() -> Result<()> {
             );
         }
     }
+    Ok(MeanStress {
+        curves,
+        half_width: exact_a,
+    })
+}
+
+/// Fig. IN2: the mean stress along the contact side.
+fn draw_mean_stress(chapter: &Chapter, curves: &[Series]) -> Result<()> {
     line_chart(
         chapter.path("mean_stress.svg"),
         &Axes {
-            title: format!("Mean stress along the contact side, p = 2, {MESH}², ν = {nu}"),
+            title: format!("Mean stress along the contact side, p = 2, {MESH}², ν = {NEAR_HALF}"),
             x_label: "x (mm)".into(),
             y_label: "−(σ_xx + σ_yy + σ_zz)/3 (MPa)".into(),
             log_x: false,
             log_y: false,
         },
-        &curves,
-    )?;
+        curves,
+    )
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// The set-up the prose quotes: the mesh, the penalty's safety factor and
+/// Hertz's a at ν = `NEAR_HALF` (Fig. IN2's caption).
+fn record_setup_facts(f: &mut Facts, exact_a: f64) -> Result<()> {
     f.count("mesh", MESH)?;
     f.number("safety", SAFETY, Format::Plain)?;
-    f.number("hertz_a_mm_incompressible", exact_a * 1e3, Format::Fixed(2))?;
+    f.number("hertz_a_mm_incompressible", exact_a * 1e3, Format::Fixed(2))
+}
+
+/// "Hertz along the ν axis" quotes the errors of p₀ and a at ν = 0.3,
+/// 0.499 and 0.49999, per degree and formulation.
+fn record_axis_facts(f: &mut Facts, runs: &[Run]) -> Result<()> {
     let find = |p: usize, nu: f64, name: &str| {
         runs.iter()
             .find(|r| r.p == p && r.nu == nu && r.name == name)
@@ -304,12 +382,18 @@ fn main() -> Result<()> {
             }
         }
     }
-    for &(nu, name, p, l2, en) in &finest_rates {
+    Ok(())
+}
+
+/// "Lamé's cylinder" quotes the rates between the two finest meshes at
+/// ν = 0.49999.
+fn record_lame_facts(f: &mut Facts, finest_rates: &[(f64, &str, usize, f64, f64)]) -> Result<()> {
+    for &(nu, name, p, l2, en) in finest_rates {
         if nu == 0.49999 {
             f.number(&format!("l2_rate_{name}_p{p}"), l2, Format::Fixed(2))?;
             f.number(&format!("energy_rate_{name}_p{p}"), en, Format::Fixed(2))?;
         }
     }
-    // ANCHOR_END: facts
-    chapter.finish()
+    Ok(())
 }
+// ANCHOR_END: facts

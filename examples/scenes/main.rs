@@ -11,6 +11,7 @@
 //! binary must be built first: `cargo run --example` builds only examples).
 
 use companion::chapter::{cli_binary, Chapter, Cost, PROGRAMS};
+use companion::Facts;
 use iga_contact::report::table::{Column, Format, Table};
 use iga_contact::resources::{ADDRESS_SPACE_SHARE, PHYSICAL_SHARE};
 use iga_contact::scene::{self, OutputSpec};
@@ -153,12 +154,39 @@ fn output_files() -> Result<Vec<(&'static str, &'static str)>> {
         .collect()
 }
 
+/// The chapter "Scene files and the command line", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("scenes")?;
     let shell = Shell::new()?;
 
-    // ANCHOR: shipped
-    // The shipped scenes: what each describes and asks for.
+    // The shipped scenes: their table.
+    chapter.table("shipped", &shipped_table()?)?;
+
+    // The command line: its help, and the shipped scenes checked and run.
+    chapter.text("help.txt", &help(&shell)?)?;
+    chapter.text("runs.txt", &runs(&shell)?)?;
+
+    // Outputs: lean scenes: what the Hertz run wrote, and its summary. The
+    // summary holds the run's seconds per phase (`[timing]`), and so its
+    // size and text vary from run to run.
+    chapter.table("outputs", &outputs_table(&shell)?)?;
+    for f in ["outputs.csv", "outputs.md", "hertz_summary.toml"] {
+        chapter.timed(f);
+    }
+    chapter.text("hertz_summary.toml", &hertz_summary(&shell)?)?;
+
+    // Validation and error messages: the transcript of the edited scenes.
+    chapter.text("errors.txt", &errors(&shell)?)?;
+
+    // The command line: the programs `reproduce` runs, the memory budget.
+    chapter.table("programs", &programs_table()?)?;
+    record_memory_facts(chapter.facts())?;
+    chapter.finish()
+}
+
+// ANCHOR: shipped
+/// "The shipped scenes": what each describes and asks for.
+fn shipped_table() -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("file", "file"),
         Column::plain("title", "title"),
@@ -185,18 +213,23 @@ fn main() -> Result<()> {
             },
         ])?;
     }
-    chapter.table("shipped", &table)?;
-    // ANCHOR_END: shipped
+    Ok(table)
+}
+// ANCHOR_END: shipped
 
-    // The command line's own help.
+/// "The command line": the command line's own help.
+fn help(shell: &Shell) -> Result<String> {
     let mut log = String::new();
     for args in [&["--help"][..], &["run", "--help"], &["check", "--help"]] {
         shell.run(&mut log, "", args)?;
     }
-    chapter.text("help.txt", &log)?;
+    Ok(log)
+}
 
-    // ANCHOR: runs
-    // Checking and running the shipped scenes.
+// ANCHOR: runs
+/// "The command line": checking and running the shipped scenes (the Hertz
+/// run writes the folder `outputs_table` measures).
+fn runs(shell: &Shell) -> Result<String> {
     let mut log = String::new();
     shell.run(&mut log, "", &["check", "data/scenes/hertz.toml"])?;
     shell.run(&mut log, "", &["run", "data/scenes/hertz.toml"])?;
@@ -210,10 +243,13 @@ fn main() -> Result<()> {
         "",
         &["run", "data/scenes/taylor.toml", "--out", "results/taylor"],
     )?;
-    chapter.text("runs.txt", &log)?;
-    // ANCHOR_END: runs
+    Ok(log)
+}
+// ANCHOR_END: runs
 
-    // What the Hertz run wrote: every output key, its file and its size.
+/// "Outputs: lean scenes": what the Hertz run wrote, every output key, its
+/// file and its size.
+fn outputs_table(shell: &Shell) -> Result<Table> {
     let out = shell.dir.join("out/hertz");
     let mut table = Table::new(vec![
         Column::plain("key", "key"),
@@ -231,21 +267,22 @@ fn main() -> Result<()> {
             (size.len() as usize).into(),
         ])?;
     }
-    chapter.table("outputs", &table)?;
-    // the summary holds the run's seconds per phase (`[timing]`), and so
-    // its size and text vary from run to run
-    for f in ["outputs.csv", "outputs.md", "hertz_summary.toml"] {
-        chapter.timed(f);
-    }
-    let summary =
-        std::fs::read_to_string(out.join(scene::files::SUMMARY)).map_err(|source| Error::Io {
-            path: "out/hertz/summary.toml".into(),
-            source,
-        })?;
-    chapter.text("hertz_summary.toml", &summary)?;
+    Ok(table)
+}
 
-    // ANCHOR: errors
-    // Copies of hertz.toml with one edit each, and what the binary says.
+/// "Outputs: lean scenes": the summary the Hertz run wrote.
+fn hertz_summary(shell: &Shell) -> Result<String> {
+    let out = shell.dir.join("out/hertz");
+    std::fs::read_to_string(out.join(scene::files::SUMMARY)).map_err(|source| Error::Io {
+        path: "out/hertz/summary.toml".into(),
+        source,
+    })
+}
+
+// ANCHOR: errors
+/// "Validation and error messages": copies of hertz.toml with one edit
+/// each, and what the binary says.
+fn errors(shell: &Shell) -> Result<String> {
     let edits: [(&str, &str, &str, &str); 9] = [
         (
             "young.toml",
@@ -327,10 +364,12 @@ fn main() -> Result<()> {
         ],
     )?;
     shell.run(&mut log, "", &["check", "no_such_scene.toml"])?;
-    chapter.text("errors.txt", &log)?;
-    // ANCHOR_END: errors
+    Ok(log)
+}
+// ANCHOR_END: errors
 
-    // The chapter programs `reproduce` runs.
+/// "The command line": the chapter programs `reproduce` runs.
+fn programs_table() -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("example", "program"),
         Column::plain("chapter", "writes"),
@@ -347,15 +386,16 @@ fn main() -> Result<()> {
             .into(),
         ])?;
     }
-    chapter.table("programs", &table)?;
+    Ok(table)
+}
 
-    // The default memory budget, which `--max-memory` overrides.
-    let f = chapter.facts();
+/// "The command line" quotes the default memory budget, which
+/// `--max-memory` overrides.
+fn record_memory_facts(f: &mut Facts) -> Result<()> {
     f.number("physical_share", PHYSICAL_SHARE, Format::Percent(0))?;
     f.number(
         "address_space_share",
         ADDRESS_SPACE_SHARE,
         Format::Percent(0),
-    )?;
-    chapter.finish()
+    )
 }

@@ -9,6 +9,7 @@ use companion::hertz as setup;
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
+use companion::Facts;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::PressureProfile;
 use iga_contact::report::history::history_table;
@@ -194,8 +195,63 @@ fn first(s: &Solution, event: Event) -> usize {
         .map_or(0, |r| r.iteration)
 }
 
-/// Runs [`paper_runs`]: the summary table, facts, and the histories as CSV.
-fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
+/// The chapter "Solvers: BFGS, its correction, and Newton", section by
+/// section.
+fn main() -> Result<()> {
+    let mut chapter = Chapter::from_args("solvers")?;
+
+    // The shipped scenes, for the chapters "Newton and BFGS" and "Starting
+    // and correcting BFGS": two iteration histories, their summary table
+    // and facts.
+    let shipped = solve_shipped()?;
+    for run in shipped.iter().filter(|r| HISTORIES.contains(&r.key)) {
+        let t = history_table(&run.solution.history, Unit::NewtonPerMetre, Unit::Metre)?;
+        chapter.table(&format!("history_{}", run.key), &t)?;
+    }
+    chapter.table("shipped", &shipped_table(&shipped)?)?;
+    record_shipped_facts(chapter.facts(), &shipped)?;
+
+    // How it is measured: Table S1 and Fig. S1.
+    let all = solve_ladder()?;
+    chapter.table("solvers", &solvers_table(&all)?)?;
+    chapter.timed("solvers.csv"); // its `seconds` column
+    draw_iterations(&chapter, &all)?;
+
+    // The facts of "How it is measured" and "Discussion": the iterations,
+    // their ratios, the failures and the wall times.
+    record_ladder_facts(chapter.facts(), &all)?;
+    chapter.finish()
+}
+
+/// One run of [`paper_runs`], solved.
+struct ShippedRun {
+    key: &'static str,
+    file: &'static str,
+    solver: &'static str,
+    steps: &'static str,
+    solution: Solution,
+}
+
+/// Runs [`paper_runs`].
+fn solve_shipped() -> Result<Vec<ShippedRun>> {
+    paper_runs()
+        .into_iter()
+        .map(|(key, file, solver, steps, opts)| {
+            let problem = companion::shipped(file)?.build()?;
+            let solution = solve(&problem, &opts)?;
+            Ok(ShippedRun {
+                key,
+                file,
+                solver,
+                steps,
+                solution,
+            })
+        })
+        .collect()
+}
+
+/// The summary of [`paper_runs`] that "Starting and correcting BFGS" shows.
+fn shipped_table(runs: &[ShippedRun]) -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("scene", "scene"),
         Column::plain("solver", "solver"),
@@ -205,20 +261,19 @@ fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
         Column::plain("corrections", "corr."),
         Column::plain("first_correction", "first corr."),
     ]);
-    for (key, file, solver, steps, opts) in paper_runs() {
-        let problem = companion::shipped(file)?.build()?;
-        let s = solve(&problem, &opts)?;
+    for run in runs {
+        let s = &run.solution;
         let h = &s.history;
-        let corrected = first(&s, Event::Correction);
-        let scene = if file == "taylor.toml" {
+        let corrected = first(s, Event::Correction);
+        let scene = if run.file == "taylor.toml" {
             "Taylor"
         } else {
             "Hertz 8²"
         };
         table.push(vec![
             scene.into(),
-            solver.into(),
-            steps.into(),
+            run.solver.into(),
+            run.steps.into(),
             h.len().into(),
             s.factorisations.into(),
             h.corrections().into(),
@@ -228,12 +283,23 @@ fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
                 corrected.into()
             }),
         ])?;
-        let f = chapter.facts();
+    }
+    Ok(table)
+}
+
+/// "Newton and BFGS" and "Starting and correcting BFGS" quote, per run of
+/// [`paper_runs`], its counts, its first step, the fall after the first
+/// correction and the active points iteration by iteration.
+fn record_shipped_facts(f: &mut Facts, runs: &[ShippedRun]) -> Result<()> {
+    for run in runs {
+        let (key, s) = (run.key, &run.solution);
+        let h = &s.history;
+        let corrected = first(s, Event::Correction);
         f.count(&format!("{key}_its"), h.len())?;
         f.count(&format!("{key}_factorisations"), s.factorisations)?;
         f.count(&format!("{key}_corrections"), h.corrections())?;
         f.count(&format!("{key}_first_correction"), corrected)?;
-        f.count(&format!("{key}_guard_at"), first(&s, Event::FloatingGuard))?;
+        f.count(&format!("{key}_guard_at"), first(s, Event::FloatingGuard))?;
         if let Some(row) = h.rows.first() {
             // the first step: how far it pulls the body, how much ‖R‖ rises
             f.number(
@@ -255,25 +321,25 @@ fn shipped_runs(chapter: &mut Chapter) -> Result<()> {
         }
         let active: Vec<String> = h.rows.iter().map(|r| r.active_points.to_string()).collect();
         f.text(&format!("{key}_active"), active.join(", "))?;
-        if HISTORIES.contains(&key) {
-            let t = history_table(h, Unit::NewtonPerMetre, Unit::Metre)?;
-            chapter.table(&format!("history_{key}"), &t)?;
-        }
     }
-    chapter.table("shipped", &table)
+    Ok(())
 }
 
-fn main() -> Result<()> {
-    let mut chapter = Chapter::from_args("solvers")?;
-    shipped_runs(&mut chapter)?;
+/// "How it is measured": every solver on every mesh.
+fn solve_ladder() -> Result<Vec<Outcome>> {
     let mut all = Vec::new();
     for (name, _, opts) in solvers() {
         for n in MESHES {
             all.push(outcome(name, &opts, n)?);
         }
     }
+    Ok(all)
+}
 
-    // ANCHOR: tables
+// ANCHOR: tables
+/// Table S1: the five solvers as the mesh is refined (the CSV adds the
+/// final residual, the seconds and the failure).
+fn solvers_table(all: &[Outcome]) -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("solver", "solver"),
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
@@ -293,7 +359,7 @@ fn main() -> Result<()> {
         Column::new("seconds", "seconds", Unit::Second, Format::Fixed(3)).csv_only(),
         Column::plain("failure", "failure").csv_only(),
     ]);
-    for o in &all {
+    for o in all {
         table.push(vec![
             o.solver.into(),
             o.elements.into(),
@@ -308,12 +374,13 @@ fn main() -> Result<()> {
             o.failure.clone().map_or(Cell::Empty, Cell::Text),
         ])?;
     }
-    chapter.table("solvers", &table)?;
-    chapter.timed("solvers.csv"); // its `seconds` column
-                                  // ANCHOR_END: tables
+    Ok(table)
+}
+// ANCHOR_END: tables
 
-    // Newton dashed: it lies on the default BFGS, which corrects at every
-    // iteration here.
+/// Fig. S1: iterations against the mesh, per solver. Newton dashed: it lies
+/// on the default BFGS, which corrects at every iteration here.
+fn draw_iterations(chapter: &Chapter, all: &[Outcome]) -> Result<()> {
     let series: Vec<Series> = solvers()
         .iter()
         .map(|&(name, key, _)| {
@@ -340,10 +407,14 @@ fn main() -> Result<()> {
             log_y: false,
         },
         &series,
-    )?;
+    )
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// "Discussion" quotes the iterations on the coarsest and finest mesh, how
+/// many more the uncorrected BFGS takes, Newton's range, the failures, and
+/// on how many meshes the uncorrected default is the faster.
+fn record_ladder_facts(f: &mut Facts, all: &[Outcome]) -> Result<()> {
     let its = |name: &str, n: usize| {
         all.iter()
             .find(|o| o.solver == name && o.elements == n)
@@ -400,7 +471,6 @@ fn main() -> Result<()> {
         .count();
     f.count("repeats", REPEATS)?;
     f.count("meshes", MESHES.len())?;
-    f.timed_number("no_correction_faster", faster as f64, Format::Plain)?;
-    // ANCHOR_END: facts
-    chapter.finish()
+    f.timed_number("no_correction_faster", faster as f64, Format::Plain)
 }
+// ANCHOR_END: facts

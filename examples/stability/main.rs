@@ -10,6 +10,7 @@
 use companion::hertz as setup;
 
 use companion::chapter::Chapter;
+use companion::Facts;
 use iga_contact::assembly::{strain_stress, Load};
 use iga_contact::contact::{Integration, Penalty, Theta};
 use iga_contact::error::{Error, ErrorKind, Result};
@@ -489,20 +490,56 @@ fn penalty_view(rows: &[Row], prefix: &str, format: Format) -> Result<Table> {
     Ok(t)
 }
 
+/// The chapter "Stability atlas", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("stability")?;
-    let reference = {
-        let s = hertz(2, 8)?;
-        let p = s.build()?;
-        let sol = solve(&p, &SolverOptions::default())?;
-        PressureProfile::dense(&p, &sol.full)?.measures(0).p0
-    };
-    // The Hertz chapter's converged reference (p = 3, 128²), from its facts.
-    let reference_fine = companion::facts("hertz")?
+
+    // Axes and references: every case of the atlas, solved.
+    let all = cases(reference_8x8()?, reference_fine()?)?;
+    let rows = run_atlas(&all);
+
+    // The full atlas: every case and its diagnosis (atlas.csv).
+    chapter.csv("atlas", &atlas_table(&rows)?)?;
+
+    // The penalty range of each θ: the penalty × θ views of the two problems.
+    let hertz_view = penalty_view(&rows, "hertz_8x8_penalty", Format::Percent(1))?;
+    chapter.text("penalty_hertz.md", &hertz_view.to_markdown())?;
+    let taylor_view = penalty_view(&rows, "taylor_penalty", Format::Sci(0))?;
+    chapter.text("penalty_taylor.md", &taylor_view.to_markdown())?;
+
+    // The full atlas: the other axes, case by case.
+    chapter.text("cases.md", &others_table(&rows)?.to_markdown())?;
+
+    // The penalty range of each θ: the factors within the tolerance.
+    chapter.table("penalty_ranges", &ranges_table(&rows)?)?;
+
+    // The facts of every section: the counts, and each case's measures.
+    record_count_facts(chapter.facts(), &rows)?;
+    record_case_facts(chapter.facts(), &rows)?;
+    chapter.finish()
+}
+
+/// "Axes and references": p₀ of the Hertz disk on 8², the reference of the
+/// Hertz 8² cases on the penalty and gap axes.
+fn reference_8x8() -> Result<f64> {
+    let s = hertz(2, 8)?;
+    let p = s.build()?;
+    let sol = solve(&p, &SolverOptions::default())?;
+    Ok(PressureProfile::dense(&p, &sol.full)?.measures(0).p0)
+}
+
+/// "Axes and references": the Hertz chapter's converged reference (p = 3,
+/// 128²), from its facts; the reference of the mesh and degree axis.
+fn reference_fine() -> Result<f64> {
+    Ok(companion::facts("hertz")?
         .value("reference_p0_mpa")
         .ok_or_else(|| Error::invalid("hertz facts", "reference_p0_mpa", "missing"))?
-        * 1e6;
-    let all = cases(reference, reference_fine)?;
+        * 1e6)
+}
+
+/// Every case solved in turn, with its outcome and warnings reported on
+/// standard error as it goes.
+fn run_atlas(all: &[Case]) -> Vec<Row> {
     let mut rows = Vec::with_capacity(all.len());
     for (k, case) in all.iter().enumerate() {
         let row = run_case(case);
@@ -520,9 +557,22 @@ fn main() -> Result<()> {
         }
         rows.push(row);
     }
+    rows
+}
 
-    // ANCHOR: tables
-    let text = |s: &str| if s.is_empty() { Cell::Empty } else { s.into() };
+// ANCHOR: tables
+/// A text cell, empty where the text is.
+fn text_cell(s: &str) -> Cell {
+    if s.is_empty() {
+        Cell::Empty
+    } else {
+        s.into()
+    }
+}
+
+/// "The full atlas": every case with its solver history, active points,
+/// error, warnings and diagnosis (`atlas.csv`).
+fn atlas_table(rows: &[Row]) -> Result<Table> {
     let mut atlas = Table::new(vec![
         Column::plain("case", "case"),
         Column::plain("theta", "θ"),
@@ -542,7 +592,7 @@ fn main() -> Result<()> {
         Column::plain("error_kind", "error kind"),
         Column::plain("diagnosis", "diagnosis"),
     ]);
-    for r in &rows {
+    for r in rows {
         let warnings: Vec<String> = r.warnings.iter().map(|w| w.to_string()).collect();
         atlas.push(vec![
             r.case.clone().into(),
@@ -559,19 +609,17 @@ fn main() -> Result<()> {
             r.singular_active.into(),
             r.error.into(),
             r.p0.into(),
-            text(&warnings.join("; ")),
-            text(&r.error_kind),
-            text(&r.diagnosis),
+            text_cell(&warnings.join("; ")),
+            text_cell(&r.error_kind),
+            text_cell(&r.diagnosis),
         ])?;
     }
-    chapter.csv("atlas", &atlas)?;
+    Ok(atlas)
+}
 
-    // the Markdown views of the atlas: penalty × θ for each problem, and
-    // the other axes case by case
-    let hertz_view = penalty_view(&rows, "hertz_8x8_penalty", Format::Percent(1))?;
-    chapter.text("penalty_hertz.md", &hertz_view.to_markdown())?;
-    let taylor_view = penalty_view(&rows, "taylor_penalty", Format::Sci(0))?;
-    chapter.text("penalty_taylor.md", &taylor_view.to_markdown())?;
+/// "The full atlas" in Markdown: the axes other than the penalty, case by
+/// case (the penalty axis has its views, `penalty_view`).
+fn others_table(rows: &[Row]) -> Result<Table> {
     let mut others = Table::new(vec![
         Column::plain("case", "case"),
         Column::plain("status", "status"),
@@ -589,11 +637,15 @@ fn main() -> Result<()> {
             r.active.into(),
             r.error.into(),
             against(&r.case).into(),
-            text(&r.note()),
+            text_cell(&r.note()),
         ])?;
     }
-    chapter.text("cases.md", &others.to_markdown())?;
+    Ok(others)
+}
 
+/// "The penalty range of each θ": the factors at which Hertz 8×8 is within
+/// the tolerance of its reference.
+fn ranges_table(rows: &[Row]) -> Result<Table> {
     // The factors themselves, not an interval: the set need not be
     // contiguous (θ = 1 is off by more than the tolerance at factor 1,
     // between two factors within it).
@@ -603,7 +655,7 @@ fn main() -> Result<()> {
         Column::plain("count", "count"),
     ]);
     for theta in Theta::ALL {
-        let ok = good_factors(&rows, theta, PENALTY_TOLERANCE);
+        let ok = good_factors(rows, theta, PENALTY_TOLERANCE);
         let list: Vec<String> = ok.iter().map(|&x| Format::Sci(0).render(x)).collect();
         ranges.push(vec![
             theta.value().into(),
@@ -611,11 +663,14 @@ fn main() -> Result<()> {
             ok.len().into(),
         ])?;
     }
-    chapter.table("penalty_ranges", &ranges)?;
-    // ANCHOR_END: tables
+    Ok(ranges)
+}
+// ANCHOR_END: tables
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// The prose counts the cases by outcome, and quotes the tolerance and the
+/// sharp penalty's safety factor.
+fn record_count_facts(f: &mut Facts, rows: &[Row]) -> Result<()> {
     f.count("cases", rows.len())?;
     let count = |pred: &dyn Fn(&Row) -> bool| rows.iter().filter(|r| pred(r)).count();
     f.count("converged", count(&|r| r.status == "converged"))?;
@@ -628,8 +683,14 @@ fn main() -> Result<()> {
         count(&|r| r.error_kind == ErrorKind::SingularKernel.tag()),
     )?;
     f.number("tolerance", PENALTY_TOLERANCE, Format::Percent(0))?;
-    f.number("sharp_safety", SHARP_SAFETY, Format::Plain)?;
-    for r in &rows {
+    f.number("sharp_safety", SHARP_SAFETY, Format::Plain)
+}
+
+/// Every section quotes single cases: per case and θ, its error, p₀ and
+/// reference, its points, its displacement, warnings, status and
+/// iterations.
+fn record_case_facts(f: &mut Facts, rows: &[Row]) -> Result<()> {
+    for r in rows {
         // keys: the case name with `_` for `.` and `-`, then the θ: t1, t0, tm1
         let theta = match r.theta {
             Theta::Symmetric => "t1",
@@ -663,6 +724,6 @@ fn main() -> Result<()> {
         f.text(&format!("{key}_status"), r.status)?;
         f.count(&format!("{key}_iterations"), r.history.len())?;
     }
-    // ANCHOR_END: facts
-    chapter.finish()
+    Ok(())
 }
+// ANCHOR_END: facts

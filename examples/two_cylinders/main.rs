@@ -9,6 +9,7 @@
 //! Run it with `cargo run --release --example two_cylinders`.
 
 use companion::chapter::Chapter;
+use companion::Facts;
 use iga_contact::assembly::Load;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::{Cylinder, Hertz};
@@ -97,11 +98,41 @@ fn run(p: usize, n: usize, solver: &'static str, kind: SolverKind) -> Result<Run
     })
 }
 
+/// The chapter "Two elastic cylinders", section by section.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("two_cylinders")?;
+
+    // The model: Hertz's solution for the pair (its facts below).
     let exact = analytic(&scene(2, 8)?)?;
 
-    // ANCHOR: ladder
+    // The mesh ladder: Table C1, Figs. C3 and C2.
+    let ladder = solve_ladder()?;
+    chapter.table("ladder", &ladder_table(&ladder, &exact)?)?;
+    draw_errors(&chapter, &ladder)?;
+    draw_pressure(&chapter, &ladder, &exact)?;
+
+    // Fig. C1 of "The model", drawn on the ladder's 8² rung.
+    draw_deformed(&chapter, &ladder)?;
+
+    // The facts of "The model" and of "The mesh ladder".
+    record_model_facts(chapter.facts(), &exact)?;
+    record_ladder_facts(chapter.facts(), &ladder, &exact)?;
+    chapter.finish()
+}
+
+// ANCHOR: ladder
+/// The solves of "The mesh ladder": p = 2 on every rung with both solvers,
+/// the reference, and the reference's check.
+struct Ladder {
+    /// p = 2, rung by rung, BFGS then Newton.
+    runs: Vec<Run>,
+    reference: Run,
+    /// The reference's degree on half its elements.
+    coarse_reference: Run,
+}
+
+/// The mesh ladder, with both solvers, and the reference.
+fn solve_ladder() -> Result<Ladder> {
     let mut runs = Vec::new();
     for n in LADDER {
         for (name, kind) in [("bfgs", SolverKind::Bfgs), ("newton", SolverKind::Newton)] {
@@ -112,9 +143,26 @@ fn main() -> Result<()> {
     // The reference's own error, estimated by its distance from the same
     // degree on half the elements (an upper estimate for a converging pair).
     let coarse_reference = run(REFERENCE.0, REFERENCE.1 / 2, "newton", SolverKind::Newton)?;
-    // ANCHOR_END: ladder
+    Ok(Ladder {
+        runs,
+        reference,
+        coarse_reference,
+    })
+}
+// ANCHOR_END: ladder
 
-    // ANCHOR: table
+impl Ladder {
+    /// The p = 2 rungs solved by BFGS, coarsest first.
+    fn bfgs(&self) -> Vec<&Run> {
+        self.runs.iter().filter(|r| r.solver == "bfgs").collect()
+    }
+}
+
+// ANCHOR: table
+/// Table C1: every rung and the reference, against Hertz and (CSV only)
+/// against the reference.
+fn ladder_table(ladder: &Ladder, exact: &Hertz) -> Result<Table> {
+    let reference = &ladder.reference;
     let [p0_hertz, a_hertz, p0_reference, a_reference] = CONTACT_ERRORS;
     let mut table = Table::new(vec![
         // The degree tells the p = 3 reference row from the p = 2 rungs;
@@ -132,7 +180,7 @@ fn main() -> Result<()> {
         a_reference.csv_only(),
         Column::plain("zones", "zones").csv_only(),
     ]);
-    for r in runs.iter().chain(std::iter::once(&reference)) {
+    for r in ladder.runs.iter().chain(std::iter::once(reference)) {
         table.push(vec![
             r.degree.into(),
             r.elements.into(),
@@ -148,11 +196,15 @@ fn main() -> Result<()> {
             r.zones.into(),
         ])?;
     }
-    chapter.table("ladder", &table)?;
-    // ANCHOR_END: table
+    Ok(table)
+}
+// ANCHOR_END: table
 
-    // The errors against the reference, p = 2 and BFGS, against the mesh.
-    let bfgs: Vec<&Run> = runs.iter().filter(|r| r.solver == "bfgs").collect();
+/// Fig. C3: the errors against the reference, p = 2 and BFGS, against the
+/// mesh.
+fn draw_errors(chapter: &Chapter, ladder: &Ladder) -> Result<()> {
+    let reference = &ladder.reference;
+    let bfgs = ladder.bfgs();
     let error = |f: fn(&Run) -> f64, reference: f64| -> Vec<(f64, f64)> {
         bfgs.iter()
             .map(|r| (r.elements as f64, relative(f(r), reference).abs()))
@@ -173,9 +225,12 @@ fn main() -> Result<()> {
                 .with_markers()
                 .dashed(),
         ],
-    )?;
+    )
+}
 
-    // The pressure of the finest p = 2 rung against Hertz's ellipse.
+/// Fig. C2: the pressure of the finest p = 2 rung against Hertz's ellipse.
+fn draw_pressure(chapter: &Chapter, ladder: &Ladder, exact: &Hertz) -> Result<()> {
+    let bfgs = ladder.bfgs();
     let fine = bfgs.last().expect("a ladder");
     let profile = PressureProfile::dense(&fine.problem, &fine.solution.full)?;
     let x_max = 1.5 * exact.half_width;
@@ -208,9 +263,13 @@ fn main() -> Result<()> {
             Series::line("IGA", pts),
             Series::line("Hertz, two cylinders", ellipse).dashed(),
         ],
-    )?;
+    )
+}
 
-    // The deformed pair, coloured by u_y (true scale), on the 8² rung.
+/// Fig. C1: the deformed pair, coloured by u_y (true scale), on the 8²
+/// rung.
+fn draw_deformed(chapter: &Chapter, ladder: &Ladder) -> Result<()> {
+    let bfgs = ladder.bfgs();
     let coarse = bfgs.iter().find(|r| r.elements == 8).expect("an 8² rung");
     let cells = field_cells(
         &coarse.problem,
@@ -234,14 +293,23 @@ fn main() -> Result<()> {
         "u_y (mm)",
         &cells,
         &outlines,
-    )?;
+    )
+}
 
-    // ANCHOR: facts
-    let f = chapter.facts();
+// ANCHOR: facts
+/// "The model" quotes Hertz's solution and the radius and modulus it uses.
+fn record_model_facts(f: &mut Facts, exact: &Hertz) -> Result<()> {
     f.number("hertz_p0_mpa", exact.p0 * 1e-6, Format::Fixed(4))?;
     f.number("hertz_a_mm", exact.half_width * 1e3, Format::Fixed(3))?;
     f.number("radius_mm", exact.radius * 1e3, Format::Fixed(1))?;
-    f.number("modulus_mpa", exact.modulus * 1e-6, Format::Fixed(2))?;
+    f.number("modulus_mpa", exact.modulus * 1e-6, Format::Fixed(2))
+}
+
+/// "The mesh ladder" quotes the errors of the reference and of the finest
+/// rung, the force balance, the load's quadrature error, the reference's
+/// own error, how far the two solvers part and the number of zones.
+fn record_ladder_facts(f: &mut Facts, ladder: &Ladder, exact: &Hertz) -> Result<()> {
+    let (runs, reference) = (&ladder.runs, &ladder.reference);
     let hertz = [exact.p0, exact.half_width];
     let reference_pa = [reference.p0, reference.half_width];
     f.contact_errors(
@@ -252,6 +320,7 @@ fn main() -> Result<()> {
         Format::SignedPercent(1),
     )?;
     f.count("reference_dofs", reference.problem.n())?;
+    let bfgs = ladder.bfgs();
     let finest = bfgs.last().expect("a ladder");
     let finest_pa = [finest.p0, finest.half_width];
     f.contact_errors(
@@ -268,27 +337,13 @@ fn main() -> Result<()> {
         hertz,
         Format::SignedPercent(2),
     )?;
-    let balance = runs
-        .iter()
-        .map(|r| {
-            let [fx, fy] = post::contact_resultant(&r.problem, &r.solution.full);
-            let [lx, ly] = post::applied_resultant(&r.problem).unwrap_or([f64::NAN; 2]);
-            // the horizontal force of the curved interface goes into the symmetry support
-            let _ = (fx, lx);
-            ((fy + ly) / ly).abs()
-        })
-        .fold(0.0, f64::max);
-    f.number("force_balance", balance, Format::Pow10(0))?;
-    // The assembled load is the weight of the half disk up to the
-    // quadrature error of the disk's area.
-    let load_error = runs
-        .iter()
-        .map(|r| {
-            let [_, ly] = post::applied_resultant(&r.problem).unwrap_or([f64::NAN; 2]);
-            relative(-ly, exact.load / 2.0).abs()
-        })
-        .fold(0.0, f64::max);
-    f.number("load_quadrature", load_error, Format::Pow10(0))?;
+    f.number("force_balance", force_balance(runs), Format::Pow10(0))?;
+    f.number(
+        "load_quadrature",
+        load_quadrature(runs, exact),
+        Format::Pow10(0),
+    )?;
+    let coarse_reference = &ladder.coarse_reference;
     f.contact_errors(
         "reference_check",
         [coarse_reference.p0, coarse_reference.half_width],
@@ -296,7 +351,39 @@ fn main() -> Result<()> {
         reference_pa,
         Format::SignedPercent(2),
     )?;
-    let spread = LADDER
+    f.number("solver_spread", solver_spread(runs), Format::Pow10(0))?;
+    f.count("max_zones", runs.iter().map(|r| r.zones).max().unwrap_or(0))
+}
+
+/// The largest relative imbalance of the vertical contact resultant and
+/// the assembled load over the rungs.
+fn force_balance(runs: &[Run]) -> f64 {
+    runs.iter()
+        .map(|r| {
+            let [fx, fy] = post::contact_resultant(&r.problem, &r.solution.full);
+            let [lx, ly] = post::applied_resultant(&r.problem).unwrap_or([f64::NAN; 2]);
+            // the horizontal force of the curved interface goes into the symmetry support
+            let _ = (fx, lx);
+            ((fy + ly) / ly).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The assembled load is the weight of the half disk up to the quadrature
+/// error of the disk's area: the largest over the rungs.
+fn load_quadrature(runs: &[Run], exact: &Hertz) -> f64 {
+    runs.iter()
+        .map(|r| {
+            let [_, ly] = post::applied_resultant(&r.problem).unwrap_or([f64::NAN; 2]);
+            relative(-ly, exact.load / 2.0).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The largest relative difference in p₀ or a between BFGS and Newton on
+/// the same rung.
+fn solver_spread(runs: &[Run]) -> f64 {
+    LADDER
         .iter()
         .map(|&n| {
             let pair: Vec<&Run> = runs.iter().filter(|r| r.elements == n).collect();
@@ -304,9 +391,6 @@ fn main() -> Result<()> {
                 .abs()
                 .max(relative(pair[0].half_width, pair[1].half_width).abs())
         })
-        .fold(0.0, f64::max);
-    f.number("solver_spread", spread, Format::Pow10(0))?;
-    f.count("max_zones", runs.iter().map(|r| r.zones).max().unwrap_or(0))?;
-    // ANCHOR_END: facts
-    chapter.finish()
+        .fold(0.0, f64::max)
 }
+// ANCHOR_END: facts
