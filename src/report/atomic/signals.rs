@@ -14,6 +14,7 @@ use crate::error::{Error, Result};
 #[cfg(unix)]
 pub fn install_signal_cleanup() -> Result<()> {
     use signal_hook::consts::{SIGINT, SIGTERM};
+    use std::io::Write;
     let mut signals =
         signal_hook::iterator::Signals::new([SIGINT, SIGTERM]).map_err(|e| Error::Io {
             path: "signal handlers".into(),
@@ -28,7 +29,11 @@ pub fn install_signal_cleanup() -> Result<()> {
                     discard(staging, lock);
                 }
                 let name = if sig == SIGINT { "SIGINT" } else { "SIGTERM" };
-                eprintln!("error: interrupted by {name}; no output was written");
+                // Holding stderr until the exit keeps the main thread from
+                // printing a warning after the error line: the error is the
+                // run's last word.
+                let mut err = std::io::stderr().lock();
+                let _ = writeln!(err, "error: interrupted by {name}; no output was written");
                 std::process::exit(128 + sig);
             }
         })
