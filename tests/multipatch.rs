@@ -346,6 +346,20 @@ fn multi_patch_keys_are_checked_with_one_error_line() {
         }
         assert!(!msg.contains('\n'), "{msg}");
     }
+    // a traction on a patch side of the multi-patch body: refused with
+    // advice a load can follow (a load has no `boundary` key)
+    let text = format!(
+        "{base}\n[[load]]\ntraction = {{ body = \"disk\", side = \"eta_max\", traction = [0.0, -1.0] }}\n"
+    );
+    let msg = Scene::from_toml_str(&text)
+        .and_then(|s| s.build().map(|_| ()))
+        .expect_err("a traction on a multi-patch body")
+        .to_string();
+    assert!(msg.contains("load[1].traction.side"), "{msg}");
+    assert!(
+        msg.contains("body_force") && !msg.contains("`boundary`"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -414,7 +428,13 @@ fn the_singular_corner_advice_is_the_four_patch_disk_and_following_it_clears_the
         .find(|w| matches!(w, Warning::ZoneAtSideEnd { singular: true, .. }))
         .unwrap_or_else(|| panic!("no singular side-end warning: {w:?}"));
     let advice = corner.to_string();
-    for named in ["half_disk_4", "slave_boundary", "hertz_multipatch.toml"] {
+    for named in [
+        "half_disk_4",
+        "slave_boundary",
+        "hertz_multipatch.toml",
+        "disk_5",
+        "disk_full.toml",
+    ] {
         assert!(advice.contains(named), "{advice}");
     }
     let (reference, _, _) = heavy("hertz.toml", 64, Growth::Auto);
@@ -605,4 +625,105 @@ fn the_full_disk_on_point_supports_matches_the_half_disk_with_symmetry() {
     let f = iga_contact::post::contact_resultant(&problem, &sol.full);
     let load = 1.3e6 * PI * R * R;
     assert!(rel(f[1], load) < 1e-8 && f[0].abs() < 1e-8 * load, "{f:?}");
+}
+
+#[test]
+fn a_ceiling_under_a_boundary_that_climbs_the_sides_is_refused() {
+    // disk_5 in the axes layout: `arc_lower` runs from 135° through the
+    // bottom to 45°, so its ends face upwards. Under a floor drawn from
+    // right to left (a ceiling: the obstacle above y = 0 holds the whole
+    // disk) every point starts closed and the upper ends face the
+    // obstacle; the lower two thirds face away and carry the refusal.
+    let base = std::fs::read_to_string(companion::shipped_path("disk_full.toml")).unwrap();
+    let axes = base.replacen("layout = \"diagonal\"", "layout = \"axes\"", 1);
+    let drop_supports = |t: &str| {
+        t.split("[[support]]")
+            .enumerate()
+            .map(|(i, part)| {
+                if i == 0 {
+                    part.to_string()
+                } else {
+                    // keep what follows the support's three lines
+                    part.splitn(5, '\n').nth(4).unwrap_or("").to_string()
+                }
+            })
+            .collect::<String>()
+    };
+    let axes = drop_supports(&axes);
+    assert!(!axes.contains("component"), "{axes}");
+    let ceiling = axes.replacen(
+        "from = [-0.4, 0.0], to = [0.4, 0.0]",
+        "from = [0.4, 0.0], to = [-0.4, 0.0]",
+        1,
+    );
+    let e = Scene::from_toml_str(&ceiling)
+        .and_then(|s| s.build().map(|_| ()))
+        .expect_err("a ceiling holding the disk");
+    let msg = e.to_string();
+    assert!(msg.contains("`contact[0].master`"), "{msg}");
+    assert!(msg.contains("from [0.4, 0.0] to [-0.4, 0.0]"), "{msg}");
+    assert!(msg.contains("swap `from` and `to`"), "{msg}");
+    // the floor as drawn in the shipped file passes this check: what stops
+    // the build (if anything) is no longer the contact's direction
+    if let Err(e) = Scene::from_toml_str(&axes).and_then(|s| s.build().map(|_| ())) {
+        assert!(!e.to_string().contains("contact[0].master"), "{e}");
+    }
+}
+
+#[test]
+fn the_profile_names_the_contact_not_the_patch_piece() {
+    // hertz_multipatch.toml: one [[contact]] whose slave boundary crosses
+    // patch sides, so several pairs; the CSV and summary.toml both say 0
+    let mut scene = companion::shipped("hertz_multipatch.toml").unwrap();
+    let problem = scene.build().unwrap();
+    assert!(problem.contacts.pieces(0).len() > 1, "needs several pieces");
+    let dir = std::env::temp_dir().join(format!("iga-mp-profile-{}", std::process::id()));
+    scene.output = iga_contact::scene::OutputSpec {
+        summary: true,
+        pressure_profile: true,
+        ..Default::default()
+    };
+    scene.run(&dir).unwrap();
+    let csv = std::fs::read_to_string(dir.join("pressure_profile.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("contact,x,y,bracket,pressure,regular"));
+    let contacts: std::collections::BTreeSet<&str> =
+        lines.map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(contacts.into_iter().collect::<Vec<_>>(), ["0"]);
+    let summary: toml::Table =
+        toml::from_str(&std::fs::read_to_string(dir.join("summary.toml")).unwrap()).unwrap();
+    assert_eq!(summary["contact"].as_array().unwrap().len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_locking_multi_patch_body_is_told_to_refine_not_to_go_mixed() {
+    // the mixed formulation is refused on a body of several patches, so
+    // the locking warning of one may only advise the finer mesh
+    let base = std::fs::read_to_string(companion::shipped_path("hertz_multipatch.toml")).unwrap();
+    let nu = base.replacen("poisson = 0.1", "poisson = 0.4999", 1);
+    assert_ne!(nu, base);
+    let report = Scene::from_toml_str(&nu)
+        .unwrap()
+        .check(&iga_contact::resources::Budget::from_machine())
+        .unwrap();
+    let locking: Vec<String> = report
+        .warnings
+        .iter()
+        .filter(|w| matches!(w, Warning::NearlyIncompressible { .. }))
+        .map(|w| w.to_string())
+        .collect();
+    assert_eq!(locking.len(), 1, "{:?}", report.warnings);
+    assert!(
+        locking[0].contains("refine it to at least"),
+        "{}",
+        locking[0]
+    );
+    assert!(!locking[0].contains("set formulation"), "{}", locking[0]);
+    // the advice the warning does not give is indeed refused
+    let mixed = nu.replacen("material = {", "formulation = \"mixed\"\nmaterial = {", 1);
+    let e = Scene::from_toml_str(&mixed)
+        .and_then(|s| s.build().map(|_| ()))
+        .expect_err("mixed on a multi-patch body");
+    assert!(e.to_string().contains("one-patch bodies only"), "{e}");
 }

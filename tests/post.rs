@@ -128,7 +128,7 @@ fn the_profile_marks_the_singular_corner_and_agrees_with_the_summary() {
     scene.run(&dir).unwrap();
     let csv = std::fs::read_to_string(dir.join("pressure_profile.csv")).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("pair,x,y,bracket,pressure,regular"));
+    assert_eq!(lines.next(), Some("contact,x,y,bracket,pressure,regular"));
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
         .collect();

@@ -295,7 +295,7 @@ fn hertz_run_writes_everything_it_asks_for() {
     // The profile file is the dense profile, whose peak is p0.
     let csv = std::fs::read_to_string(dir.join(files::PRESSURE_PROFILE)).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("pair,x,y,bracket,pressure,regular"));
+    assert_eq!(lines.next(), Some("contact,x,y,bracket,pressure,regular"));
     let rows: Vec<f64> = lines
         .map(|l| l.split(',').nth(4).unwrap().parse::<f64>().unwrap())
         .collect();
@@ -895,14 +895,34 @@ fn rejected() -> Vec<Reject> {
         reject(
             master("{ rigid_segment = { from = [2.0, 0.5], to = [-1.0, 0.5] } }"),
             "contact[0].master",
-            "body \"upper\" against its master",
+            "the rigid curve from [2.0, 0.5] to [-1.0, 0.5]",
         )
         .says(&["points away from the master", "swap `from` and `to`"]),
+        // the same contact twice: each would carry half of the pressure
+        reject(
+            base_with(
+                "[solver]",
+                "[[contact]]\nslave = \"upper\"\nslave_side = \"eta_min\"\nmaster = { body = \"lower\", side = \"eta_max\" }\n\n[solver]",
+            ),
+            "contact[1]",
+            "slave \"upper\" against the master of contact[0]",
+        )
+        .says(&["half of the pressure"]),
+        // two floors on one line that overlap: the same obstacle twice
+        reject(
+            master("{ rigid_segment = { from = [-1.0, 0.5], to = [2.0, 0.5] } }").replacen(
+                "[solver]",
+                "[[contact]]\nslave = \"upper\"\nslave_side = \"eta_min\"\nmaster = { rigid_segment = { from = [0.5, 0.5], to = [3.0, 0.5] } }\n\n[solver]",
+                1,
+            ),
+            "contact[1]",
+            "slave \"upper\" against the master of contact[0]",
+        ),
         // the lower block's bottom faces away from the upper block
         reject(
             master("{ body = \"lower\", side = \"eta_min\" }"),
             "contact[0]",
-            "body \"upper\" against its master",
+            "body \"upper\" against side eta_min of body \"lower\"",
         )
         .says(&["face each other"]),
         reject(
@@ -1162,4 +1182,24 @@ fn titles_with_control_characters_still_give_well_formed_xml() {
     }
     let svg = std::fs::read_to_string(dir.join(files::FIGURE)).unwrap();
     assert!(svg.contains("&lt;tag&gt; &amp;"), "markup not escaped");
+}
+
+#[test]
+fn two_floors_side_by_side_under_one_slave_side_are_two_contacts() {
+    // one line, one direction, no overlap: the slave side meets each floor
+    // on its own stretch, so the contacts do not repeat one another
+    let floor = |from: f64, to: f64| {
+        format!("{{ rigid_segment = {{ from = [{from:?}, 0.5], to = [{to:?}, 0.5] }} }}")
+    };
+    let text = master(&floor(-1.0, 0.5)).replacen(
+        "[solver]",
+        &format!(
+            "[[contact]]\nslave = \"upper\"\nslave_side = \"eta_min\"\nmaster = {}\n\n[solver]",
+            floor(0.5, 3.0)
+        ),
+        1,
+    );
+    let scene = Scene::from_toml_str(&text).unwrap();
+    let problem = scene.build().unwrap();
+    assert_eq!(problem.contacts.len(), 2);
 }

@@ -136,8 +136,8 @@ pub(crate) fn checked_contact_points(
     contacts: &Contacts,
 ) -> Result<Vec<ContactPoint>> {
     let mut out = Vec::new();
-    // per point: whether the slave's outward normal has a positive
-    // component along n¹, towards the master
+    // per point: the cosine between the slave's outward normal and n¹,
+    // positive where the slave faces its master
     let mut facing = Vec::new();
     for (ip, pair) in pairs.iter().enumerate() {
         let id = PairId {
@@ -168,51 +168,80 @@ pub(crate) fn checked_contact_points(
     for (c, pieces) in contacts.iter() {
         let slave_points =
             (0..out.len()).filter(|&q| pieces.contains(&out[q].pair) && out[q].role == Role::Slave);
-        // facing away but open everywhere, the contact can never close (a
-        // floor beyond the far side of the body): inert, not wrong
+        // Facing away but open everywhere, the contact can never close (a
+        // floor beyond the far side of the body): inert, not wrong. Closed
+        // where the slave faces away, the master lies behind the slave's
+        // surface, inside the body, and the gap is measured through it: a
+        // ceiling drawn under a disk whose boundary also climbs its sides
+        // faces the ceiling at the sides only, so the closed points are
+        // weighed, not counted as all or none. Normals at right angles to
+        // n¹ (a block's sides below a floor it starts into) weigh on
+        // neither side.
         let (mut any, mut away, mut closed) = (false, true, false);
+        let (mut closed_away, mut closed_facing) = (0.0, 0.0);
         for q in slave_points {
             any = true;
-            away &= !facing[q];
-            closed |= out[q].g0 <= 0.0;
+            away &= facing[q] <= 0.0;
+            if out[q].g0 <= 0.0 {
+                closed = true;
+                if facing[q] < -PERPENDICULAR {
+                    closed_away += out[q].weight;
+                } else if facing[q] > PERPENDICULAR {
+                    closed_facing += out[q].weight;
+                }
+            }
         }
-        if any && away && closed {
+        if any && closed && (away || closed_away > closed_facing) {
             return Err(facing_away(c, &pairs[pieces.start], bodies));
         }
     }
     Ok(out)
 }
 
-/// Where [`one_side`] puts its points, and whether each faces its master.
+/// The cosine between two unit normals below which (in magnitude) they
+/// count as perpendicular: round-off of a normal computed from a
+/// NURBS map, not a direction.
+const PERPENDICULAR: f64 = 1e-8;
+
+/// Where [`one_side`] puts its points, and how far each faces its master.
 struct Sink<'a> {
     points: &'a mut Vec<ContactPoint>,
-    facing: &'a mut Vec<bool>,
+    facing: &'a mut Vec<f64>,
 }
 
 /// The error of contact `c`, first piece `pair`, whose slave faces away
-/// from the master at every point and starts closed somewhere: the gap is
-/// measured through the slave body, so no contact of the two surfaces is
-/// modelled (a floor drawn from right to left is a ceiling over the body).
+/// from the master where it starts closed: the gap is measured through the
+/// slave body, so no contact of the two surfaces is modelled (a floor drawn
+/// from right to left is a ceiling over the body).
 fn facing_away(c: usize, pair: &ContactPair, bodies: &[Body]) -> Error {
     let slave = &bodies[pair.slave].name;
-    let (field, advice) = match pair.master {
-        Master::Rigid(_) => (
+    let (field, value, advice) = match &pair.master {
+        Master::Rigid(curve) => (
             format!("contact[{c}].master"),
+            match (curve.points.first(), curve.points.last()) {
+                (Some(a), Some(b)) => format!("the rigid curve from {a:?} to {b:?}"),
+                _ => "the rigid curve".to_string(),
+            },
             "the obstacle lies on the right of the curve's direction (a rigid_segment from \
              left to right is a floor): swap `from` and `to`, or name the slave side that \
              faces the obstacle",
         ),
-        Master::Body { .. } => (
+        Master::Body { body, side } => (
             format!("contact[{c}]"),
+            format!(
+                "body {slave:?} against side {} of body {:?}",
+                side.name(),
+                bodies[*body].name
+            ),
             "name the slave side (or boundary) and the master side that face each other",
         ),
     };
     Error::invalid(
         field,
-        format!("body {slave:?} against its master"),
+        value,
         format!(
-            "at every contact point the slave's outward normal points away from the master, \
-             so the gap would be measured through the slave body: {advice}"
+            "where body {slave:?} starts in contact, its outward normal points away from the \
+             master, so the gap would be measured through the slave body: {advice}"
         ),
     )
 }
@@ -482,7 +511,7 @@ fn make_point(
     young: f64,
     degree: usize,
     pressure: Option<&Arc<SplinePressure>>,
-) -> Result<Option<(ContactPoint, bool)>> {
+) -> Result<Option<(ContactPoint, f64)>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
     let (shape, own_normal, len) = space
@@ -602,7 +631,7 @@ fn make_point(
         }
     }
     let regular = regular_map(&space.patch, pair.slave_side, be.range);
-    let faces = own_normal[0] * normal[0] + own_normal[1] * normal[1] > 0.0;
+    let faces = own_normal[0] * normal[0] + own_normal[1] * normal[1];
     Ok(Some((
         ContactPoint {
             pair: id.pair,

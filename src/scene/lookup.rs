@@ -85,6 +85,26 @@ impl Scene {
         }
     }
 
+    /// Refuses a surface load on a patch side of body `b` when it has
+    /// several patches: a load names one patch side, and a boundary of
+    /// several patches is not a load's key, so the advice is what does
+    /// load such a body.
+    pub(super) fn one_patch_load(&self, b: usize, field: &str, side: &str) -> Result<()> {
+        match self.bodies[b].geometry.multipatch() {
+            None => Ok(()),
+            Some(_) => Err(Error::invalid(
+                field,
+                side,
+                format!(
+                    "body {:?} has several patches, and a traction or pressure load takes a \
+                     side of a one-patch body only: load it by a `body_force`, or through a \
+                     contact with a one-patch body that carries the load",
+                    self.bodies[b].name
+                ),
+            )),
+        }
+    }
+
     /// The pieces (patch of the body, side) of boundary `name` of body `b`.
     pub(super) fn boundary_of(
         &self,

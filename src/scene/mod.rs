@@ -40,6 +40,7 @@ mod check;
 mod estimate;
 mod geometry;
 mod lookup;
+mod overlap;
 mod parse;
 mod patches;
 mod refine;

@@ -206,7 +206,9 @@ impl Scene {
         if let (true, Some(profile)) = (o.pressure_profile, &profile) {
             set.stage(
                 files::PRESSURE_PROFILE,
-                profile_table(profile)?.to_csv().as_bytes(),
+                profile_table(profile, &problem.contacts)?
+                    .to_csv()
+                    .as_bytes(),
             )?;
         }
         if o.vtu {

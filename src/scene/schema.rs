@@ -248,7 +248,7 @@ pub struct OutputSpec {
     pub vtu_subdivisions: usize,
     /// `iterations.csv`: the solver's iteration history.
     pub iterations: bool,
-    /// `pressure_profile.csv`: pair, x, y, the bracket P, the pressure
+    /// `pressure_profile.csv`: contact (the `[[contact]]` index), x, y, the bracket P, the pressure
     /// −\[P\]₋ on the dense profile ([`crate::post::PressureProfile::dense`]),
     /// and whether the map is regular there ([`crate::post::ProfileSample::regular`]).
     pub pressure_profile: bool,

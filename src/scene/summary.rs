@@ -1,6 +1,7 @@
 //! What a run reports: [`RunReport`] to the caller, `summary.toml` and the
 //! pressure-profile table to the output directory.
 
+use crate::contact::Contacts;
 use crate::error::Result;
 use crate::history::History;
 use crate::post::PressureProfile;
@@ -143,12 +144,14 @@ pub(super) fn no_negative_zero(v: f64) -> f64 {
     v + 0.0
 }
 
-/// The dense pressure profile as a table: pair, position, bracket, pressure,
+/// The dense pressure profile as a table: contact (its index among the
+/// scene's `[[contact]]` entries, as in `summary.toml`, whatever the number
+/// of patch sides its slave boundary crosses), position, bracket, pressure,
 /// and whether the map is regular there (1) or singular (0: the bracket is
 /// 1/det J of the stress, and the measures of `summary.toml` skip it).
-pub(super) fn profile_table(profile: &PressureProfile) -> Result<Table> {
+pub(super) fn profile_table(profile: &PressureProfile, contacts: &Contacts) -> Result<Table> {
     let mut t = Table::new(vec![
-        Column::plain("pair", "pair"),
+        Column::plain("contact", "contact"),
         Column::new("x", "x", Unit::None, Format::Sci(6)),
         Column::new("y", "y", Unit::None, Format::Sci(6)),
         Column::new("bracket", "P", Unit::None, Format::Sci(6)),
@@ -157,7 +160,7 @@ pub(super) fn profile_table(profile: &PressureProfile) -> Result<Table> {
     ]);
     for s in profile.samples() {
         t.push(vec![
-            s.pair.into(),
+            contacts.of(s.pair).into(),
             s.x[0].into(),
             s.x[1].into(),
             s.bracket.into(),

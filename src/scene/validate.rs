@@ -118,7 +118,7 @@ impl Scene {
             let f = format!("load[{i}].{}", load_kind(l));
             let b = self.resolve(&names, format!("{f}.body"), l.body())?;
             if let Load::Traction { side, .. } | Load::Pressure { side, .. } = l {
-                self.one_patch(b, &format!("{f}.side"), side.name())?;
+                self.one_patch_load(b, &format!("{f}.side"), side.name())?;
             }
             match l {
                 Load::BodyForce { force, .. } => finite_point(&format!("{f}.force"), *force)?,
@@ -199,6 +199,7 @@ impl Scene {
                 )?;
             }
         }
+        self.refuse_repeated_contacts(&names)?;
         self.validate_scales()?;
         self.solver.validate("solver")?;
         let o = &self.output;

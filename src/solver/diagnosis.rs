@@ -48,24 +48,44 @@ pub(crate) fn failure(
     if active.is_empty() {
         parts.push("active set empty: the body floats".into());
     } else {
-        let below = active
+        let below: Vec<usize> = active
             .iter()
-            .filter(|&&q| problem.points[q].below_stability_bound())
-            .count();
-        if below > 0 {
+            .copied()
+            .filter(|&q| problem.points[q].below_stability_bound())
+            .collect();
+        if !below.is_empty() {
+            // The key to raise is the user's: name each contact whose
+            // points are below the bound, by its index in the scene.
+            let mut contacts: Vec<usize> = below
+                .iter()
+                .map(|&q| problem.contacts.of(problem.points[q].pair))
+                .collect();
+            contacts.dedup();
+            contacts.sort_unstable();
+            contacts.dedup();
+            let key = |name: &str| {
+                contacts
+                    .iter()
+                    .map(|c| format!("contact[{c}].nitsche.{name}"))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            };
             parts.push(format!(
-                "{below} of the {} active points {} a penalty below the stability bound of their element, so the tangent need not be coercive (raise nitsche.penalty_factor, or use theta = -1)",
+                "{} of the {} active points {} a penalty below the stability bound of their element, so the tangent need not be coercive (raise {}, or set {} = -1)",
+                below.len(),
                 active.len(),
-                if below == 1 { "has" } else { "have" }
+                if below.len() == 1 { "has" } else { "have" },
+                key("penalty_factor"),
+                key("theta"),
             ));
         }
     }
     let skipped = history.skipped_updates();
     if skipped > 0 {
         parts.push(if skipped == 1 {
-            "curvature condition failed once".to_string()
+            "the BFGS curvature condition failed at 1 iteration (its pair was skipped)".to_string()
         } else {
-            format!("curvature condition failed {skipped} times")
+            format!("the BFGS curvature condition failed at {skipped} iterations (their pairs were skipped)")
         });
     }
     Error::NotConverged {

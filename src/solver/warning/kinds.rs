@@ -86,6 +86,15 @@ pub enum SlaveExtent {
     Boundary,
 }
 
+/// What a locking body can be told: a one-patch body may take the mixed
+/// formulation or a finer mesh; a body of several patches only the finer
+/// mesh, since the mixed formulation is built for one patch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LockingRemedy {
+    MixedOrRefine,
+    Refine,
+}
+
 /// Something a converged solve reports about its answer: it solves the
 /// discrete equations, but may not be the contact solution the user wants.
 #[derive(Clone, Debug, PartialEq)]
@@ -151,6 +160,8 @@ pub enum Warning {
         /// The fewest elements per direction that bring the indicator to
         /// [`LOCKING`].
         elements: usize,
+        /// What the body can be told to do.
+        remedy: LockingRemedy,
     },
     /// The contact zone of contact `contact` runs to an end of its slave side
     /// where the body's boundary goes on smoothly, and the master goes on
@@ -299,25 +310,40 @@ impl std::fmt::Display for Warning {
             ),
             Warning::NearlyIncompressible {
                 body,
-                formulation: Formulation::Displacement,
+                formulation,
                 poisson,
                 indicator,
                 elements,
-            } => write!(
-                f,
-                "body {body:?}: ν = {poisson} in plane strain locks this displacement formulation on its mesh (λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?} (its continuous pressure does not lock), or refine it to at least {elements} elements in each direction"
-            ),
-            Warning::NearlyIncompressible {
-                body,
-                formulation: Formulation::Mixed | Formulation::LocalMixed,
-                // (never raised for `Mixed`; the words fit the local one)
-                poisson,
-                indicator,
-                elements,
-            } => write!(
-                f,
-                "body {body:?}: ν = {poisson} in plane strain locks its formulation on its mesh (a pressure of degree p − 1 per element over-constrains the spline space; λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: set formulation = \"mixed\" on {body:?}, or refine it to at least {elements} elements in each direction"
-            ),
+                remedy,
+            } => {
+                let what = match formulation {
+                    Formulation::Displacement => "this displacement formulation",
+                    // (never raised for `Mixed`; the words fit the local one)
+                    Formulation::Mixed | Formulation::LocalMixed => "its formulation",
+                };
+                let why = match formulation {
+                    Formulation::Displacement => "",
+                    Formulation::Mixed | Formulation::LocalMixed => {
+                        "a pressure of degree p − 1 per element over-constrains the spline space; "
+                    }
+                };
+                let refine = format!("refine it to at least {elements} elements in each direction");
+                let advice = match (remedy, formulation) {
+                    (LockingRemedy::MixedOrRefine, Formulation::Displacement) => format!(
+                        "set formulation = \"mixed\" on {body:?} (its continuous pressure does not lock), or {refine}"
+                    ),
+                    (LockingRemedy::MixedOrRefine, _) => {
+                        format!("set formulation = \"mixed\" on {body:?}, or {refine}")
+                    }
+                    (LockingRemedy::Refine, _) => format!(
+                        "{refine} (every patch: the mixed formulation takes one-patch bodies only)"
+                    ),
+                };
+                write!(
+                    f,
+                    "body {body:?}: ν = {poisson} in plane strain locks {what} on its mesh ({why}λ/μ over the cube of its elements per direction is {indicator:.2e}, above {LOCKING:e}), so the answer is unreliable: {advice}"
+                )
+            }
             Warning::ZoneAtSideEnd {
                 contact,
                 slave,
@@ -347,7 +373,7 @@ impl std::fmt::Display for Warning {
                 // on its own patch: only a body of several patches has a
                 // boundary that goes on past it
                 match (singular, extent) {
-                    (true, _) => "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml)",
+                    (true, _) => "a side cannot be extended past a singular corner of its patch, so make the body of patches without one and give the contact a `slave_boundary` that goes on past the zone (a half disk: `half_disk_4` with `slave_boundary = \"arc_lower\"`, as data/scenes/hertz_multipatch.toml; a full disk: `disk_5` with `layout = \"diagonal\"` and `slave_boundary = \"arc_lower\"`, as data/scenes/disk_full.toml)",
                     (false, SlaveExtent::Side(_)) => "extend the slave side beyond the contact zone",
                     (false, SlaveExtent::Boundary) => "give the contact a `slave_boundary` of more of the body's patches, one that goes on past the zone",
                 }

@@ -15,8 +15,8 @@ mod side_end;
 mod solution;
 
 pub use kinds::{
-    Counted, PenaltyRemedy, SideEnd, SlaveExtent, Warning, LOCKING, LOCKING_POISSON, LOOSE_PENALTY,
-    OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
+    Counted, LockingRemedy, PenaltyRemedy, SideEnd, SlaveExtent, Warning, LOCKING, LOCKING_POISSON,
+    LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
 };
 pub use setup::{before_solve, locking, setup_warnings};
 pub use side_end::zones_at_side_end;

@@ -1,7 +1,7 @@
 //! The warnings known before the solve: the choice of slave and modulus, near
 //! incompressibility, and the penalty at the points that touch first.
 
-use super::kinds::{Counted, Warning, LOCKING, LOCKING_POISSON, STIFFER_SLAVE};
+use super::kinds::{Counted, LockingRemedy, Warning, LOCKING, LOCKING_POISSON, STIFFER_SLAVE};
 use super::penalty::penalty_warnings;
 use crate::contact::penalty::first_touch_of;
 use crate::contact::{ContactPair, ContactPoint, Contacts, Master};
@@ -42,7 +42,14 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair], contacts: &Contact
             None => locked.push((&b.name, indicator, w)),
         }
     }
-    out.extend(locked.into_iter().map(|(.., w)| w));
+    out.extend(locked.into_iter().map(|(name, _, mut w)| {
+        if let Warning::NearlyIncompressible { remedy, .. } = &mut w {
+            if bodies.iter().filter(|b| b.name == name).count() > 1 {
+                *remedy = LockingRemedy::Refine;
+            }
+        }
+        w
+    }));
     out
 }
 
@@ -68,6 +75,9 @@ pub fn locking(b: &Body) -> Option<Warning> {
         poisson: nu,
         indicator,
         elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
+        // one patch as far as this body knows; `setup_warnings` sees the
+        // other patches of its name
+        remedy: LockingRemedy::MixedOrRefine,
     })
 }
 
