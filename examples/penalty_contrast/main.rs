@@ -10,6 +10,7 @@
 
 use companion::chapter::Chapter;
 use companion::penalty::{hertz, measure, Run};
+use companion::Facts;
 use iga_contact::contact::{Modulus, Role, Sides, Theta};
 use iga_contact::error::Result;
 use iga_contact::post::{self, penalty_stability, relative};
@@ -27,28 +28,54 @@ const CONTRAST_MESHES: [usize; 3] = [16, 32, 64];
 
 /// The variants compared: whose modulus enters (11), and which sides
 /// carry the contact terms.
-const VARIANTS: [(Modulus, Sides); 3] = [
-    (Modulus::Slave, Sides::Biased),
-    (Modulus::Max, Sides::Biased),
-    (Modulus::Slave, Sides::Unbiased),
-];
+#[derive(Clone, Copy, PartialEq)]
+enum Variant {
+    /// The slave's modulus, the biased form (the crate's default).
+    Slave,
+    /// The larger modulus, the biased form.
+    Max,
+    /// The slave's modulus, the unbiased form.
+    Unbiased,
+}
+
+impl Variant {
+    /// In the column order of Table PS3.
+    const ALL: [Variant; 3] = [Variant::Slave, Variant::Max, Variant::Unbiased];
+
+    fn modulus(self) -> Modulus {
+        match self {
+            Variant::Slave | Variant::Unbiased => Modulus::Slave,
+            Variant::Max => Modulus::Max,
+        }
+    }
+
+    fn sides(self) -> Sides {
+        match self {
+            Variant::Slave | Variant::Max => Sides::Biased,
+            Variant::Unbiased => Sides::Unbiased,
+        }
+    }
+
+    /// The name its facts and curves go by.
+    fn name(self) -> &'static str {
+        match self {
+            Variant::Slave => "slave",
+            Variant::Max => "max",
+            Variant::Unbiased => "unbiased",
+        }
+    }
+}
 
 /// `data/scenes/disk_on_block.toml` with the disk on n² elements, the
 /// block 2n × n, the block's modulus `ratio` times the disk's, and the
-/// pair's `modulus`, `sides` and `theta`.
-fn disk_on_block(
-    n: usize,
-    ratio: f64,
-    modulus: Modulus,
-    sides: Sides,
-    theta: Theta,
-) -> Result<Problem> {
+/// pair's `variant` and `theta`.
+fn disk_on_block(n: usize, ratio: f64, variant: Variant, theta: Theta) -> Result<Problem> {
     let mut s = companion::shipped("disk_on_block.toml")?
         .refined("disk", RefineSpec::iga(2, [n, n]))?
         .refined("block", RefineSpec::iga(2, [2 * n, n]))?
         .with_nitsche(|x| {
-            x.modulus = modulus;
-            x.sides = sides;
+            x.modulus = variant.modulus();
+            x.sides = variant.sides();
             x.theta = theta;
         });
     s.body_mut("block")?.material.young *= ratio;
@@ -66,21 +93,37 @@ fn rigid(n: usize, theta: Theta, factor: f64) -> Result<Problem> {
 }
 // ANCHOR_END: contrast_setup
 
-/// Both solvers on one problem: the default BFGS and Newton.
-fn both(problem: &Problem) -> Result<[Run; 2]> {
-    Ok([
-        measure(problem, &SolverOptions::default())?,
-        measure(problem, &SolverOptions::with_kind(SolverKind::Newton))?,
-    ])
+/// p₀ of the disk on the rigid plane with the default BFGS.
+fn rigid_plane_p0(n: usize, theta: Theta, factor: f64) -> Result<f64> {
+    Ok(
+        measure(&rigid(n, theta, factor)?, &SolverOptions::default())?
+            .expect("the rigid case converges")
+            .p0,
+    )
 }
 
-/// Iterations of both solvers as "BFGS / Newton", or the failure.
-fn iterations(r: &[Run; 2]) -> Cell {
-    let one = |o: &Run| match o {
-        Ok(o) => o.solution.history.len().to_string(),
-        Err(kind) => kind.to_string(),
-    };
-    Cell::Text(format!("{} / {}", one(&r[0]), one(&r[1])))
+/// Both solvers on one problem: the default BFGS and Newton.
+struct Both {
+    bfgs: Run,
+    newton: Run,
+}
+
+impl Both {
+    fn solve(problem: &Problem) -> Result<Both> {
+        Ok(Both {
+            bfgs: measure(problem, &SolverOptions::default())?,
+            newton: measure(problem, &SolverOptions::with_kind(SolverKind::Newton))?,
+        })
+    }
+
+    /// Iterations of both solvers as "BFGS / Newton", or the failure.
+    fn iterations(&self) -> Cell {
+        let one = |o: &Run| match o {
+            Ok(o) => o.solution.history.len().to_string(),
+            Err(kind) => kind.to_string(),
+        };
+        Cell::Text(format!("{} / {}", one(&self.bfgs), one(&self.newton)))
+    }
 }
 
 /// The share of the contact force carried by the disk's half of the
@@ -123,11 +166,169 @@ fn imbalance(problem: &Problem, full: &[f64]) -> Result<f64> {
     Ok(((fy + ly) / ly).abs())
 }
 
+/// The section "Stiffness contrast" of "The penalty, measured", table by
+/// table.
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("penalty_contrast")?;
     let started = std::time::Instant::now();
-    // ANCHOR: contrast
-    let mut contrast = Table::new(vec![
+
+    // Table PS3 and Fig. PS2: the three variants against the rigid plane.
+    let contrast = solve_contrast()?;
+    chapter.table("contrast", &contrast_table(&contrast)?)?;
+    draw_contrast(&chapter, &contrast)?;
+    record_contrast_facts(chapter.facts(), &contrast)?;
+
+    // Table PS4: the other two θ on the default variant, and θ = 1 on the
+    // rigid plane.
+    let thetas = solve_thetas()?;
+    chapter.table("contrast_theta", &theta_table(&thetas)?)?;
+    let rigid_theta1 = solve_rigid_theta1()?;
+    let contrast_failures = failures(&contrast);
+    record_theta_facts(chapter.facts(), &thetas, &rigid_theta1, contrast_failures)?;
+
+    let minutes = started.elapsed().as_secs_f64() / 60.0;
+    chapter
+        .facts()
+        .timed_number("run_minutes", minutes, Format::Fixed(1))?;
+    chapter.finish()
+}
+
+// ANCHOR: contrast
+/// Table PS3 on one mesh.
+struct ContrastMesh {
+    elements: usize,
+    /// p₀ of the disk on the rigid plane, θ = 0.
+    rigid_p0: f64,
+    /// Ratio by ratio, in the order of `RATIOS`.
+    rows: Vec<ContrastRow>,
+    /// How far the stiffest converged slave-modulus run is from the rigid
+    /// plane with twice the penalty.
+    limit_vs_doubled: f64,
+    /// The unbiased form at ratio 1, if both solvers converged there.
+    halves: Option<Halves>,
+}
+
+/// One ratio on one mesh: each variant solved by both solvers.
+struct ContrastRow {
+    ratio: f64,
+    /// In the order of `Variant::ALL`.
+    variants: Vec<VariantRun>,
+}
+
+/// One variant at one ratio on one mesh.
+struct VariantRun {
+    variant: Variant,
+    iterations: Cell,
+    /// `None` unless both solvers converged.
+    converged: Option<Converged>,
+}
+
+/// What Table PS3 and its facts quote of a run both solvers converged on.
+struct Converged {
+    /// p₀ of BFGS.
+    p0: f64,
+    /// p₀ of BFGS / p₀,rigid − 1.
+    deviation: f64,
+    /// |p₀ of Newton / p₀ of BFGS − 1|.
+    solver_gap: f64,
+    /// Of BFGS.
+    imbalance: f64,
+}
+
+/// The unbiased form's two halves at ratio 1.
+struct Halves {
+    disk_share: f64,
+    gap_mismatch: f64,
+}
+
+/// Every mesh, ratio and variant, and the rigid runs they are measured
+/// against.
+fn solve_contrast() -> Result<Vec<ContrastMesh>> {
+    CONTRAST_MESHES
+        .into_iter()
+        .map(solve_contrast_mesh)
+        .collect()
+}
+
+fn solve_contrast_mesh(n: usize) -> Result<ContrastMesh> {
+    let rigid_p0 = rigid_plane_p0(n, Theta::Incomplete, 1.0)?;
+    let mut rows = Vec::new();
+    let mut halves = None;
+    for ratio in RATIOS {
+        let mut variants = Vec::new();
+        for variant in Variant::ALL {
+            let problem = disk_on_block(n, ratio, variant, Theta::Incomplete)?;
+            let runs = Both::solve(&problem)?;
+            let converged = match (&runs.bfgs, &runs.newton) {
+                (Ok(b), Ok(nw)) => {
+                    let full = &b.solution.full;
+                    // at ratio 1 the bodies are alike, so a symmetric method
+                    // should split the force evenly
+                    if variant == Variant::Unbiased && ratio == 1.0 {
+                        halves = Some(Halves {
+                            disk_share: disk_share(&problem, full),
+                            gap_mismatch: gap_mismatch(&problem, full),
+                        });
+                    }
+                    Some(Converged {
+                        p0: b.p0,
+                        deviation: relative(b.p0, rigid_p0),
+                        solver_gap: relative(nw.p0, b.p0).abs(),
+                        imbalance: imbalance(&problem, full)?,
+                    })
+                }
+                _ => None,
+            };
+            variants.push(VariantRun {
+                variant,
+                iterations: runs.iterations(),
+                converged,
+            });
+        }
+        rows.push(ContrastRow { ratio, variants });
+    }
+    // the stiff-block limit against the rigid plane with about the γ
+    // of an elastic master: (1/h₁ + 1/h₂) ≈ 2/h₁
+    let stiffest = rows
+        .iter()
+        .rev()
+        .find_map(|r| r.run(Variant::Slave).converged.as_ref())
+        .map_or(0.0, |c| c.p0);
+    let doubled = rigid_plane_p0(n, Theta::Incomplete, 2.0)?;
+    Ok(ContrastMesh {
+        elements: n,
+        rigid_p0,
+        rows,
+        limit_vs_doubled: relative(stiffest, doubled).abs(),
+        halves,
+    })
+}
+
+impl ContrastRow {
+    fn run(&self, variant: Variant) -> &VariantRun {
+        self.variants
+            .iter()
+            .find(|v| v.variant == variant)
+            .expect("every variant")
+    }
+
+    fn converged(&self) -> impl Iterator<Item = &Converged> {
+        self.variants.iter().filter_map(|v| v.converged.as_ref())
+    }
+
+    fn solver_gap(&self) -> f64 {
+        self.converged().fold(0.0, |a, c| a.max(c.solver_gap))
+    }
+
+    fn imbalance(&self) -> f64 {
+        self.converged().fold(0.0, |a, c| a.max(c.imbalance))
+    }
+}
+
+/// Table PS3, and in the CSV the rigid p₀, the solvers' difference and the
+/// force balance.
+fn contrast_table(contrast: &[ContrastMesh]) -> Result<Table> {
+    let mut table = Table::new(vec![
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
         Column::new("ratio", "E_b/E_d", Unit::None, Format::Sci(0)),
         Column::new("p0_slave", "slave", Unit::None, Format::SignedPercent(2)),
@@ -151,77 +352,51 @@ fn main() -> Result<()> {
         .csv_only(),
         Column::new("imbalance", "imbalance", Unit::None, Format::Sci(1)).csv_only(),
     ]);
-    // [variant][mesh] → (ratio, p₀ / p₀,rigid − 1) of the default BFGS
-    let mut curves: Vec<Vec<Vec<(f64, f64)>>> =
-        vec![vec![Vec::new(); CONTRAST_MESHES.len()]; VARIANTS.len()];
-    let mut solver_gap = 0.0f64;
-    let mut worst_imbalance = 0.0f64;
-    let mut failures = 0usize;
-    let mut limit_vs_doubled = Vec::new();
-    let mut share = Vec::new(); // unbiased, ratio 1: the disk half's share per mesh
-    let mut mismatch = Vec::new(); // unbiased, ratio 1: the halves' gap mismatch per mesh
-    for (im, n) in CONTRAST_MESHES.into_iter().enumerate() {
-        let rigid_p0 = measure(
-            &rigid(n, Theta::Incomplete, 1.0)?,
-            &SolverOptions::default(),
-        )?
-        .expect("the rigid case converges")
-        .p0;
-        let mut last_p0 = 0.0;
-        for ratio in RATIOS {
-            let mut row: Vec<Cell> = vec![n.into(), ratio.into()];
-            let mut gap = 0.0f64;
-            let mut imb = 0.0f64;
-            for (iv, &(modulus, sides)) in VARIANTS.iter().enumerate() {
-                let problem = disk_on_block(n, ratio, modulus, sides, Theta::Incomplete)?;
-                let r = both(&problem)?;
-                match (&r[0], &r[1]) {
-                    (Ok(b), Ok(nw)) => {
-                        gap = gap.max(relative(nw.p0, b.p0).abs());
-                        imb = imb.max(imbalance(&problem, &b.solution.full)?);
-                        let dev = relative(b.p0, rigid_p0);
-                        curves[iv][im].push((ratio, 100.0 * dev));
-                        row.push(dev.into());
-                        if iv == 0 {
-                            last_p0 = b.p0;
-                        }
-                        if sides == Sides::Unbiased && ratio == 1.0 {
-                            share.push(disk_share(&problem, &b.solution.full));
-                            mismatch.push(gap_mismatch(&problem, &b.solution.full));
-                        }
-                    }
-                    _ => {
-                        failures += 1;
-                        row.push(Cell::Empty);
-                    }
-                }
-                row.push(iterations(&r));
+    for mesh in contrast {
+        for r in &mesh.rows {
+            let mut row: Vec<Cell> = vec![mesh.elements.into(), r.ratio.into()];
+            for v in &r.variants {
+                row.push(
+                    v.converged
+                        .as_ref()
+                        .map_or(Cell::Empty, |c| c.deviation.into()),
+                );
+                row.push(v.iterations.clone());
             }
-            solver_gap = solver_gap.max(gap);
-            worst_imbalance = worst_imbalance.max(imb);
-            row.extend([rigid_p0.into(), gap.into(), imb.into()]);
-            contrast.push(row)?;
+            row.extend([
+                mesh.rigid_p0.into(),
+                r.solver_gap().into(),
+                r.imbalance().into(),
+            ]);
+            table.push(row)?;
         }
-        // the stiff-block limit against the rigid plane with about the γ
-        // of an elastic master: (1/h₁ + 1/h₂) ≈ 2/h₁
-        let doubled = measure(
-            &rigid(n, Theta::Incomplete, 2.0)?,
-            &SolverOptions::default(),
-        )?
-        .expect("the rigid case converges")
-        .p0;
-        limit_vs_doubled.push(relative(last_p0, doubled).abs());
     }
-    chapter.table("contrast", &contrast)?;
-    // ANCHOR_END: contrast
+    Ok(table)
+}
+// ANCHOR_END: contrast
 
-    // The deviation from the rigid plane against the stiffness ratio.
-    let names = ["slave", "max", "unbiased"];
+/// Fig. PS2: the deviation from the rigid plane against the stiffness
+/// ratio, for the slave's and the larger modulus (Table PS3 gives the
+/// unbiased form).
+fn draw_contrast(chapter: &Chapter, contrast: &[ContrastMesh]) -> Result<()> {
     let mut series = Vec::new();
-    for (iv, name) in names.iter().enumerate().take(2) {
-        for (im, n) in CONTRAST_MESHES.iter().enumerate() {
-            let s = Series::line(format!("{name}, {n}²"), curves[iv][im].clone()).with_markers();
-            series.push(if iv == 1 { s.dashed() } else { s });
+    for variant in [Variant::Slave, Variant::Max] {
+        for mesh in contrast {
+            let points = mesh
+                .rows
+                .iter()
+                .filter_map(|r| {
+                    let c = r.run(variant).converged.as_ref()?;
+                    Some((r.ratio, 100.0 * c.deviation))
+                })
+                .collect();
+            let name = variant.name();
+            let s = Series::line(format!("{name}, {}²", mesh.elements), points).with_markers();
+            series.push(if variant == Variant::Max {
+                s.dashed()
+            } else {
+                s
+            });
         }
     }
     line_chart(
@@ -234,84 +409,182 @@ fn main() -> Result<()> {
             log_y: false,
         },
         &series,
-    )?;
+    )
+}
 
-    // ANCHOR: contrast_facts
-    let f = chapter.facts();
-    let column =
-        |iv: usize, im: usize| -> Vec<f64> { curves[iv][im].iter().map(|c| c.1 / 100.0).collect() };
+// ANCHOR: contrast_facts
+/// Runs on which a solver failed, over Table PS3.
+fn failures(contrast: &[ContrastMesh]) -> usize {
+    contrast
+        .iter()
+        .flat_map(|m| &m.rows)
+        .flat_map(|r| &r.variants)
+        .filter(|v| v.converged.is_none())
+        .count()
+}
+
+impl ContrastMesh {
+    /// The deviations of `variant` from the rigid plane, ratio by ratio,
+    /// over the runs both solvers converged on.
+    fn deviations(&self, variant: Variant) -> Vec<f64> {
+        self.rows
+            .iter()
+            .filter_map(|r| r.run(variant).converged.as_ref())
+            .map(|c| c.deviation)
+            .collect()
+    }
+
+    /// The deviation of `variant` at `ratio`; the facts that quote it
+    /// exist only when every run converged.
+    fn deviation(&self, variant: Variant, ratio: f64) -> f64 {
+        self.rows
+            .iter()
+            .find(|r| r.ratio == ratio)
+            .and_then(|r| r.run(variant).converged.as_ref())
+            .expect("every run converged")
+            .deviation
+    }
+}
+
+/// The summary of Table PS3: per variant, whether it is monotone and how
+/// close it comes at ratio ≥ 10²; per mesh, the cells the prose quotes;
+/// over the table, the solvers' difference, the force balance and the
+/// failures.
+fn record_contrast_facts(f: &mut Facts, contrast: &[ContrastMesh]) -> Result<()> {
     let monotone =
         |v: &[f64]| v.windows(2).all(|w| w[1] >= w[0]) || v.windows(2).all(|w| w[1] <= w[0]);
-    for (iv, name) in names.iter().enumerate() {
-        let meshes = CONTRAST_MESHES.len();
-        let mono = (0..meshes).all(|im| monotone(&column(iv, im)));
-        f.text(&format!("{name}_monotone"), if mono { "yes" } else { "no" })?;
-        let worst = (0..meshes)
-            .flat_map(|im| column(iv, im).into_iter().skip(1))
+    let yes_no = |b: bool| if b { "yes" } else { "no" };
+    for variant in Variant::ALL {
+        let name = variant.name();
+        let mono = contrast.iter().all(|m| monotone(&m.deviations(variant)));
+        f.text(&format!("{name}_monotone"), yes_no(mono))?;
+        // skip(1): the first ratio, 1, is not a stiff block
+        let worst = contrast
+            .iter()
+            .flat_map(|m| m.deviations(variant).into_iter().skip(1))
             .fold(0.0f64, |a, d| a.max(d.abs()));
         f.number(&format!("{name}_worst_stiff"), worst, Format::Percent(1))?;
-        let all_within =
-            (0..meshes).all(|im| column(iv, im).iter().skip(1).all(|d| d.abs() <= 0.02));
-        f.text(
-            &format!("{name}_within_2_percent"),
-            if all_within { "yes" } else { "no" },
-        )?;
+        let all_within = contrast.iter().all(|m| {
+            m.deviations(variant)
+                .iter()
+                .skip(1)
+                .all(|d| d.abs() <= 0.02)
+        });
+        f.text(&format!("{name}_within_2_percent"), yes_no(all_within))?;
     }
+    let failures = failures(contrast);
     // the figures per mesh index every ratio: they exist when every run converged
     if failures == 0 {
-        for (im, n) in CONTRAST_MESHES.iter().enumerate() {
+        for m in contrast {
+            let n = m.elements;
+            let at = |variant, ratio| m.deviation(variant, ratio);
+            let halves = m.halves.as_ref().expect("every run converged");
             f.number(
                 &format!("slave_1e6_{n}"),
-                column(0, im)[3],
+                at(Variant::Slave, 1e6),
                 Format::SignedPercent(2),
             )?;
             f.number(
                 &format!("max_1e2_{n}"),
-                column(1, im)[1],
+                at(Variant::Max, 1e2),
                 Format::SignedPercent(1),
             )?;
             f.number(
                 &format!("max_1e4_{n}"),
-                column(1, im)[2],
+                at(Variant::Max, 1e4),
                 Format::SignedPercent(1),
             )?;
             f.number(
                 &format!("limit_vs_doubled_{n}"),
-                limit_vs_doubled[im],
+                m.limit_vs_doubled,
                 Format::Percent(2),
             )?;
-        }
-        for (im, n) in CONTRAST_MESHES.iter().enumerate() {
             f.number(
                 &format!("unbiased_1e2_{n}"),
-                column(2, im)[1],
+                at(Variant::Unbiased, 1e2),
                 Format::SignedPercent(2),
             )?;
             f.number(
                 &format!("unbiased_1_{n}"),
-                column(2, im)[0],
+                at(Variant::Unbiased, 1.0),
                 Format::SignedPercent(1),
             )?;
             f.number(
                 &format!("unbiased_share_{n}"),
-                share[im],
+                halves.disk_share,
                 Format::Percent(0),
             )?;
             f.number(
                 &format!("unbiased_gap_mismatch_um_{n}"),
-                mismatch[im] * 1e6,
+                halves.gap_mismatch * 1e6,
                 Format::Fixed(1),
             )?;
         }
     }
+    let rows = || contrast.iter().flat_map(|m| &m.rows);
+    let solver_gap = rows().fold(0.0f64, |a, r| a.max(r.solver_gap()));
+    let worst_imbalance = rows().fold(0.0f64, |a, r| a.max(r.imbalance()));
     f.number("contrast_solver_gap", solver_gap, Format::Pow10(0))?;
     f.number("contrast_imbalance", worst_imbalance, Format::Pow10(0))?;
-    f.count("contrast_failures", failures)?;
-    // ANCHOR_END: contrast_facts
+    f.count("contrast_failures", failures)
+}
+// ANCHOR_END: contrast_facts
 
-    // The other two θ on the default variant.
-    // ANCHOR: contrast_theta
-    let mut thetas = Table::new(vec![
+// ANCHOR: contrast_theta
+/// θ = 1 and θ = −1, in the column order of Table PS4.
+const OTHER_THETAS: [Theta; 2] = [Theta::Symmetric, Theta::Skew];
+
+/// One row of Table PS4: the default variant on one mesh at one ratio.
+struct ThetaRow {
+    elements: usize,
+    ratio: f64,
+    /// In the order of `OTHER_THETAS`.
+    runs: Vec<ThetaRun>,
+}
+
+struct ThetaRun {
+    /// p₀ of BFGS against the rigid plane with θ = 0; `None` if BFGS
+    /// failed.
+    deviation: Option<f64>,
+    iterations: Cell,
+}
+
+/// The disk on the rigid plane with θ = 1 (16²).
+struct RigidTheta1 {
+    active: usize,
+    active_below: usize,
+    /// p₀ against θ = 0 on the same mesh.
+    vs_theta0: f64,
+}
+
+/// Every mesh and ratio of Table PS4, with both θ.
+fn solve_thetas() -> Result<Vec<ThetaRow>> {
+    let mut rows = Vec::new();
+    for n in CONTRAST_MESHES {
+        let rigid0 = rigid_plane_p0(n, Theta::Incomplete, 1.0)?;
+        for ratio in RATIOS {
+            let mut runs = Vec::new();
+            for theta in OTHER_THETAS {
+                let problem = disk_on_block(n, ratio, Variant::Slave, theta)?;
+                let r = Both::solve(&problem)?;
+                runs.push(ThetaRun {
+                    deviation: r.bfgs.as_ref().ok().map(|o| relative(o.p0, rigid0)),
+                    iterations: r.iterations(),
+                });
+            }
+            rows.push(ThetaRow {
+                elements: n,
+                ratio,
+                runs,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// Table PS4.
+fn theta_table(rows: &[ThetaRow]) -> Result<Table> {
+    let mut table = Table::new(vec![
         Column::new("elements", "mesh", Unit::None, Format::Mesh),
         Column::new("ratio", "E_b/E_d", Unit::None, Format::Sci(0)),
         Column::new("p0_theta1", "θ = 1", Unit::None, Format::SignedPercent(2)),
@@ -324,68 +597,59 @@ fn main() -> Result<()> {
         ),
         Column::plain("its_theta_minus1", "its"),
     ]);
-    let mut theta_worst = [0.0f64; 2];
-    for n in CONTRAST_MESHES {
-        let rigid0 = measure(
-            &rigid(n, Theta::Incomplete, 1.0)?,
-            &SolverOptions::default(),
-        )?
-        .expect("the rigid case converges")
-        .p0;
-        for ratio in RATIOS {
-            let mut row: Vec<Cell> = vec![n.into(), ratio.into()];
-            for (k, theta) in [Theta::Symmetric, Theta::Skew].into_iter().enumerate() {
-                let problem = disk_on_block(n, ratio, Modulus::Slave, Sides::Biased, theta)?;
-                let r = both(&problem)?;
-                match &r[0] {
-                    Ok(o) => {
-                        let dev = relative(o.p0, rigid0);
-                        if ratio >= 1e2 {
-                            theta_worst[k] = theta_worst[k].max(dev.abs());
-                        }
-                        row.push(dev.into());
-                    }
-                    Err(_) => {
-                        failures += 1;
-                        row.push(Cell::Empty);
-                    }
-                }
-                row.push(iterations(&r));
-            }
-            thetas.push(row)?;
+    for r in rows {
+        let mut row: Vec<Cell> = vec![r.elements.into(), r.ratio.into()];
+        for run in &r.runs {
+            row.push(run.deviation.map_or(Cell::Empty, Cell::from));
+            row.push(run.iterations.clone());
         }
+        table.push(row)?;
     }
-    chapter.table("contrast_theta", &thetas)?;
-    let f = chapter.facts();
-    f.number("theta1_worst_stiff", theta_worst[0], Format::Percent(1))?;
-    f.number(
-        "theta_minus1_worst_stiff",
-        theta_worst[1],
-        Format::Percent(1),
-    )?;
-    f.count("contrast_all_failures", failures)?;
-    // the rigid plane with θ = 1 and (11): below its bound at every active point
+    Ok(table)
+}
+
+/// The rigid plane with θ = 1 and (11): below its bound at every active
+/// point.
+fn solve_rigid_theta1() -> Result<RigidTheta1> {
     let problem = rigid(16, Theta::Symmetric, 1.0)?;
     let o = measure(&problem, &SolverOptions::default())?.expect("θ = 1 converges");
     let st = penalty_stability(&problem, &o.solution.full)[0];
-    f.count("rigid_theta1_active", st.active)?;
-    f.count("rigid_theta1_below", st.active_below)?;
-    let rigid0 = measure(
-        &rigid(16, Theta::Incomplete, 1.0)?,
-        &SolverOptions::default(),
-    )?
-    .expect("the rigid case converges")
-    .p0;
+    Ok(RigidTheta1 {
+        active: st.active,
+        active_below: st.active_below,
+        vs_theta0: relative(o.p0, rigid_plane_p0(16, Theta::Incomplete, 1.0)?),
+    })
+}
+
+/// The summary of Table PS4, the failures over both tables, and θ = 1 on
+/// the rigid plane.
+fn record_theta_facts(
+    f: &mut Facts,
+    rows: &[ThetaRow],
+    rigid: &RigidTheta1,
+    contrast_failures: usize,
+) -> Result<()> {
+    // ratio ≥ 10²: a stiff block
+    let worst = |k: usize| {
+        rows.iter()
+            .filter(|r| r.ratio >= 1e2)
+            .filter_map(|r| r.runs[k].deviation)
+            .fold(0.0f64, |a, d| a.max(d.abs()))
+    };
+    f.number("theta1_worst_stiff", worst(0), Format::Percent(1))?;
+    f.number("theta_minus1_worst_stiff", worst(1), Format::Percent(1))?;
+    let failures = rows
+        .iter()
+        .flat_map(|r| &r.runs)
+        .filter(|run| run.deviation.is_none())
+        .count();
+    f.count("contrast_all_failures", contrast_failures + failures)?;
+    f.count("rigid_theta1_active", rigid.active)?;
+    f.count("rigid_theta1_below", rigid.active_below)?;
     f.number(
         "rigid_theta1_vs_theta0_16",
-        relative(o.p0, rigid0),
+        rigid.vs_theta0,
         Format::SignedPercent(1),
-    )?;
-    // ANCHOR_END: contrast_theta
-
-    let minutes = started.elapsed().as_secs_f64() / 60.0;
-    chapter
-        .facts()
-        .timed_number("run_minutes", minutes, Format::Fixed(1))?;
-    chapter.finish()
+    )
 }
+// ANCHOR_END: contrast_theta
