@@ -444,3 +444,31 @@ fn a_locking_slave_is_warned_of_locking_alone_and_the_advice_suffices() {
         "{p_locked} vs {reference}"
     );
 }
+
+#[test]
+fn a_slave_that_closes_where_it_faces_away_is_warned_and_the_advice_fixes_it() {
+    // the full disk's upper half as the slave against the floor under it:
+    // open at the start (its gaps run down through the disk), it closes
+    // once the disk has fallen its diameter, where its normals point up,
+    // away from the floor; only that warning is given (the penalty counted
+    // on such gaps would be advice that leaves the answer as wrong)
+    let shipped = companion::shipped("disk_full.toml").unwrap();
+    let mut upper = shipped.clone();
+    upper.contacts[0].slave_boundary = Some("arc_upper".into());
+    upper.output = Default::default();
+    let problem = upper.build().unwrap();
+    let sol = solve(&problem, &upper.solver).unwrap();
+    assert!(
+        matches!(&sol.warnings[..], [Warning::ClosedFacingAway { contact: 0, away, active, .. }] if away == active && *active > 0),
+        "{:?}",
+        sol.warnings
+    );
+    let text = sol.warnings[0].to_string();
+    assert!(text.contains("faces away from its master"), "{text}");
+    // followed: the side of the disk that faces the floor
+    let mut lower = upper.clone();
+    lower.contacts[0].slave_boundary = Some("arc_lower".into());
+    let (warnings, error) = outcome(&lower);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert!(error.abs() < RIGHT, "p₀ {error:+.3e} off Hertz");
+}

@@ -305,6 +305,7 @@ impl Row {
                 Warning::StifferSlave { .. } => "stiffer slave".to_string(),
                 Warning::NearlyIncompressible { .. } => "locking".to_string(),
                 Warning::ZoneAtSideEnd { .. } => "zone at side end".to_string(),
+                Warning::ClosedFacingAway { .. } => "closed facing away".to_string(),
             });
         }
         parts.join("; ")

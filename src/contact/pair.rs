@@ -136,21 +136,14 @@ pub(crate) fn checked_contact_points(
     contacts: &Contacts,
 ) -> Result<Vec<ContactPoint>> {
     let mut out = Vec::new();
-    // per point: the cosine between the slave's outward normal and n¹,
-    // positive where the slave faces its master
-    let mut facing = Vec::new();
     for (ip, pair) in pairs.iter().enumerate() {
         let id = PairId {
             pair: ip,
             contact: contacts.of(ip),
         };
-        let mut sink = Sink {
-            points: &mut out,
-            facing: &mut facing,
-        };
         match (&pair.master, pair.nitsche.sides) {
             (Master::Body { body, side }, Sides::Unbiased) => {
-                one_side(bodies, map, id, pair, Role::Slave, 0.5, &mut sink)?;
+                one_side(bodies, map, id, pair, Role::Slave, 0.5, &mut out)?;
                 let mirrored = ContactPair {
                     slave: *body,
                     slave_side: *side,
@@ -160,14 +153,15 @@ pub(crate) fn checked_contact_points(
                     },
                     nitsche: pair.nitsche,
                 };
-                one_side(bodies, map, id, &mirrored, Role::Master, 0.5, &mut sink)?;
+                one_side(bodies, map, id, &mirrored, Role::Master, 0.5, &mut out)?;
             }
-            _ => one_side(bodies, map, id, pair, Role::Slave, 1.0, &mut sink)?,
+            _ => one_side(bodies, map, id, pair, Role::Slave, 1.0, &mut out)?,
         }
     }
     for (c, pieces) in contacts.iter() {
-        let slave_points =
-            (0..out.len()).filter(|&q| pieces.contains(&out[q].pair) && out[q].role == Role::Slave);
+        let slave_points = out
+            .iter()
+            .filter(|cp| pieces.contains(&cp.pair) && cp.role == Role::Slave);
         // Facing away but open everywhere, the contact can never close (a
         // floor beyond the far side of the body): inert, not wrong. Closed
         // where the slave faces away, the master lies behind the slave's
@@ -176,18 +170,19 @@ pub(crate) fn checked_contact_points(
         // faces the ceiling at the sides only, so the closed points are
         // weighed, not counted as all or none. Normals at right angles to
         // n¹ (a block's sides below a floor it starts into) weigh on
-        // neither side.
+        // neither side. A contact that closes later where it faces away is
+        // warned at the solution (`Warning::ClosedFacingAway`).
         let (mut any, mut away, mut closed) = (false, true, false);
         let (mut closed_away, mut closed_facing) = (0.0, 0.0);
-        for q in slave_points {
+        for cp in slave_points {
             any = true;
-            away &= facing[q] <= 0.0;
-            if out[q].g0 <= 0.0 {
+            away &= cp.facing <= 0.0;
+            if cp.g0 <= 0.0 {
                 closed = true;
-                if facing[q] < -PERPENDICULAR {
-                    closed_away += out[q].weight;
-                } else if facing[q] > PERPENDICULAR {
-                    closed_facing += out[q].weight;
+                if cp.faces_away() {
+                    closed_away += cp.weight;
+                } else if cp.faces_master() {
+                    closed_facing += cp.weight;
                 }
             }
         }
@@ -196,17 +191,6 @@ pub(crate) fn checked_contact_points(
         }
     }
     Ok(out)
-}
-
-/// The cosine between two unit normals below which (in magnitude) they
-/// count as perpendicular: round-off of a normal computed from a
-/// NURBS map, not a direction.
-const PERPENDICULAR: f64 = 1e-8;
-
-/// Where [`one_side`] puts its points, and how far each faces its master.
-struct Sink<'a> {
-    points: &'a mut Vec<ContactPoint>,
-    facing: &'a mut Vec<f64>,
 }
 
 /// The error of contact `c`, first piece `pair`, whose slave faces away
@@ -254,7 +238,7 @@ fn one_side(
     pair: &ContactPair,
     role: Role,
     scale: f64,
-    sink: &mut Sink,
+    points: &mut Vec<ContactPoint>,
 ) -> Result<()> {
     let slave = &bodies[pair.slave];
     let master = match &pair.master {
@@ -290,7 +274,7 @@ fn one_side(
             .map_err(|e| within(e, id, &slave_side(pair, bodies)))?,
     };
     for be in slave.space.boundary(pair.slave_side) {
-        let first = sink.points.len();
+        let first = points.len();
         let mut breaks = vec![be.range[0]];
         let eps = 1e-10 * (be.range[1] - be.range[0]);
         breaks.extend(
@@ -306,7 +290,7 @@ fn one_side(
                     t,
                     w: scale * w,
                 };
-                if let Some((cp, faces)) = make_point(
+                if let Some(cp) = make_point(
                     id,
                     pair,
                     role,
@@ -318,8 +302,7 @@ fn one_side(
                     degree,
                     pressure.as_ref(),
                 )? {
-                    sink.points.push(cp);
-                    sink.facing.push(faces);
+                    points.push(cp);
                 }
             }
         }
@@ -328,7 +311,7 @@ fn one_side(
             &be,
             &pair.nitsche,
             pressure.as_deref(),
-            &mut sink.points[first..],
+            &mut points[first..],
         )?;
     }
     Ok(())
@@ -511,7 +494,7 @@ fn make_point(
     young: f64,
     degree: usize,
     pressure: Option<&Arc<SplinePressure>>,
-) -> Result<Option<(ContactPoint, f64)>> {
+) -> Result<Option<ContactPoint>> {
     let slave = &bodies[pair.slave];
     let space = &slave.space;
     let (shape, own_normal, len) = space
@@ -631,26 +614,23 @@ fn make_point(
         }
     }
     let regular = regular_map(&space.patch, pair.slave_side, be.range);
-    let faces = own_normal[0] * normal[0] + own_normal[1] * normal[1];
-    Ok(Some((
-        ContactPoint {
-            pair: id.pair,
-            role,
-            x,
-            t,
-            normal,
-            g0,
-            gamma,
-            trace_constant: 0.0, // set per slave element by `set_trace_constant`
-            theta: pair.nitsche.theta.value(),
-            weight: w * len,
-            dofs,
-            sn,
-            jn,
-            regular,
-        },
-        faces,
-    )))
+    Ok(Some(ContactPoint {
+        pair: id.pair,
+        role,
+        x,
+        t,
+        normal,
+        g0,
+        gamma,
+        trace_constant: 0.0, // set per slave element by `set_trace_constant`
+        theta: pair.nitsche.theta.value(),
+        weight: w * len,
+        dofs,
+        sn,
+        jn,
+        regular,
+        facing: own_normal[0] * normal[0] + own_normal[1] * normal[1],
+    }))
 }
 
 /// The fraction of det J at the middle of a boundary element below which

@@ -57,9 +57,32 @@ pub struct ContactPoint {
     /// ([`super::pair::regular_map`]): σ_n there divides by det J ≈ 0, so neither the
     /// bracket nor the trace constant of the element measures the contact.
     pub regular: bool,
+    /// The cosine between the outward normal of the side the point lies on
+    /// and n¹: positive where that side faces its master. Where it is
+    /// negative the master lies behind the surface, inside the body, and a
+    /// closed gap there is measured through the body
+    /// ([`ContactPoint::faces_away`]).
+    pub facing: f64,
 }
 
+/// The cosine between two unit normals below which (in magnitude) they
+/// count as perpendicular: round-off of a normal computed from a NURBS
+/// map, not a direction.
+pub const PERPENDICULAR: f64 = 1e-8;
+
 impl ContactPoint {
+    /// Whether the side of the point faces away from its master (beyond
+    /// round-off of perpendicular normals).
+    pub fn faces_away(&self) -> bool {
+        self.facing < -PERPENDICULAR
+    }
+
+    /// Whether the side of the point faces its master (beyond round-off of
+    /// perpendicular normals).
+    pub fn faces_master(&self) -> bool {
+        self.facing > PERPENDICULAR
+    }
+
     /// (σ_n(u), ⟦u_n⟧) for a full displacement vector.
     pub fn normal_stress_and_jump(&self, u: &[f64]) -> (f64, f64) {
         let mut s = 0.0;

@@ -188,6 +188,19 @@ pub enum Warning {
         active: usize,
         elements: usize,
     },
+    /// Active points of contact `contact` lie where its slave faces away
+    /// from the master: the master is behind the slave's surface, the gap
+    /// closed there is measured through the slave body, and what the
+    /// solution holds there is no contact of the two surfaces. The set-up
+    /// refuses a contact that starts closed that way; this one closed
+    /// under the load (a disk's top drawn as slave against the floor it is
+    /// pushed through).
+    ClosedFacingAway {
+        contact: usize,
+        slave: String,
+        away: usize,
+        active: usize,
+    },
 }
 
 impl Warning {
@@ -377,6 +390,15 @@ impl std::fmt::Display for Warning {
                     (false, SlaveExtent::Side(_)) => "extend the slave side beyond the contact zone",
                     (false, SlaveExtent::Boundary) => "give the contact a `slave_boundary` of more of the body's patches, one that goes on past the zone",
                 }
+            ),
+            Warning::ClosedFacingAway {
+                contact,
+                slave,
+                away,
+                active,
+            } => write!(
+                f,
+                "contact[{contact}]: {away} of the {active} active points lie where the slave {slave:?} faces away from its master, so their gaps are measured through the body and the answer there is no contact of the two surfaces: give contact[{contact}] the slave side (or boundary) of {slave:?} that faces the master, or, for a rigid master, the direction that puts the obstacle on the body's side (it lies on the right of `from` → `to`)"
             ),
             Warning::UnresolvedContact {
                 contact,
