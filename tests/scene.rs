@@ -908,6 +908,16 @@ fn rejected() -> Vec<Reject> {
             "slave \"upper\" against the master of contact[0]",
         )
         .says(&["half of the pressure"]),
+        // the same interface again with the roles swapped
+        reject(
+            base_with(
+                "[solver]",
+                "[[contact]]\nslave = \"lower\"\nslave_side = \"eta_max\"\nmaster = { body = \"upper\", side = \"eta_min\" }\n\n[solver]",
+            ),
+            "contact[1]",
+            "slave \"lower\" against the slave of contact[0]",
+        )
+        .says(&["sides = \"unbiased\""]),
         // two floors on one line that overlap: the same obstacle twice
         reject(
             master("{ rigid_segment = { from = [-1.0, 0.5], to = [2.0, 0.5] } }").replacen(

@@ -32,6 +32,19 @@ impl Scene {
             for i in 0..j {
                 let (a, b) = (&self.contacts[i], &self.contacts[j]);
                 let shared = a.slave == b.slave && pieces[i].iter().any(|p| pieces[j].contains(p));
+                if swapped(a, b) {
+                    return Err(Error::invalid(
+                        format!("contact[{j}]"),
+                        format!("slave {:?} against the slave of contact[{i}]", b.slave),
+                        format!(
+                            "contact[{i}] already joins these two sides with the roles \
+                             swapped, and the two contacts add their Nitsche terms on one \
+                             interface, each with its full weight: keep one of them, and set \
+                             `nitsche.sides = \"unbiased\"` on it for the form that treats \
+                             both bodies alike"
+                        ),
+                    ));
+                }
                 if shared && same_obstacle(&a.master, &b.master) {
                     return Err(Error::invalid(
                         format!("contact[{j}]"),
@@ -47,6 +60,31 @@ impl Scene {
             }
         }
         Ok(())
+    }
+}
+
+/// Whether `b` is `a` with slave and master swapped: `b`'s slave is `a`'s
+/// master body, on the side `a` names, and `b`'s master is `a`'s slave
+/// side. (A master is one patch, so both sides are sides of one-patch
+/// bodies.)
+fn swapped(a: &super::ContactSpec, b: &super::ContactSpec) -> bool {
+    match (&a.master, &b.master) {
+        (
+            MasterSpec::Body {
+                body: am,
+                side: a_side,
+            },
+            MasterSpec::Body {
+                body: bm,
+                side: b_side,
+            },
+        ) => {
+            *bm == a.slave
+                && *am == b.slave
+                && a.slave_side == Some(*b_side)
+                && b.slave_side == Some(*a_side)
+        }
+        _ => false,
     }
 }
 
