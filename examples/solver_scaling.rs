@@ -46,6 +46,7 @@
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
+use iga_contact::linsolve::FactorError;
 use iga_contact::post;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{RefineSpec, Scene};
@@ -151,9 +152,9 @@ fn one_cholesky(
     use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
     let (t, cpu) = (Instant::now(), cpu_seconds());
     let symbolic = SymbolicLlt::try_new(a.symbolic(), faer::Side::Lower)
-        .map_err(|e| iga_contact::Error::Singular(format!("{e:?}")))?;
+        .map_err(|e| FactorError::of_faer("symbolic Cholesky", e))?;
     let factor = Llt::try_new_with_symbolic(symbolic, a.as_ref(), faer::Side::Lower)
-        .map_err(|e| iga_contact::Error::Singular(format!("{e:?}")))?;
+        .map_err(|e| FactorError::of_llt("Cholesky", e))?;
     Ok((factor, t.elapsed().as_secs_f64(), cpu_seconds() - cpu))
 }
 

@@ -27,7 +27,7 @@
 //! flops for S₀, ℓ² doubles for it; per vector, one sparse triangular pass
 //! each way.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, SingularError};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::matmul::triangular::BlockStructure;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -38,7 +38,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::{FaerError, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Accum, Mat, MatMut, Par};
 
 /// A₀ factorised with the layer L last, and its Schur complement on L.
@@ -55,8 +55,8 @@ pub struct Condensation {
     factor_nnz: usize,
 }
 
-fn singular(what: &str, e: impl std::fmt::Debug) -> Error {
-    Error::Singular(format!("{what}: {e:?}"))
+fn singular(what: &'static str, error: FaerError) -> Error {
+    SingularError::Condensation { what, error }.into()
 }
 
 /// A fill-reducing order of `pattern` (n × n, symmetric, both triangles)
@@ -102,7 +102,7 @@ fn layer_last_order(
     let graph = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
     let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
     let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_scratch::<usize>(n, nnz))
-        .map_err(|e| Error::OutOfMemory(format!("the AMD workspace: {e:?}")))?;
+        .map_err(|e| Error::out_of_memory("the AMD workspace", e))?;
     // AMD sets rows of degree above dense·√n aside, unordered, as dense; the
     // layer's (ℓ and more) must stay in the graph for their degrees to count
     let control = faer::sparse::linalg::amd::Control {
@@ -147,8 +147,9 @@ fn merge_sorted(a: impl Iterator<Item = usize>, b: &[usize], out: &mut Vec<usize
 impl Condensation {
     /// Factorises `a0` (symmetric positive definite, both triangles
     /// stored) with the DOFs `layer` (increasing, distinct) ordered last.
-    /// Fails with [`Error::Singular`] if `a0` is not positive definite —
-    /// the bodies are not held even with contact everywhere.
+    /// Fails with [`SingularError::BulkNotPositiveDefinite`] if `a0` is not
+    /// positive definite — the bodies are not held even with contact
+    /// everywhere.
     pub fn new(a0: SparseColMatRef<'_, usize, f64>, layer: Vec<usize>) -> Result<Self> {
         let n = a0.nrows();
         let ell = layer.len();
@@ -172,11 +173,11 @@ impl Condensation {
         let mut values = Vec::new();
         values
             .try_reserve_exact(symbolic.len_val())
-            .map_err(|e| Error::OutOfMemory(format!("the Cholesky factor: {e:?}")))?;
+            .map_err(|e| Error::out_of_memory("the Cholesky factor", e))?;
         values.resize(symbolic.len_val(), 0.0);
         let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
         let mut mem = MemBuffer::try_new(scratch)
-            .map_err(|e| Error::OutOfMemory(format!("the Cholesky workspace: {e:?}")))?;
+            .map_err(|e| Error::out_of_memory("the Cholesky workspace", e))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,
@@ -187,11 +188,7 @@ impl Condensation {
                 MemStack::new(&mut mem),
                 Default::default(),
             )
-            .map_err(|e| {
-                Error::Singular(format!(
-                    "the bulk stiffness plus the penalty over the whole contact boundary is not positive definite ({e:?}): contact everywhere would not hold the bodies"
-                ))
-            })?;
+            .map_err(SingularError::BulkNotPositiveDefinite)?;
         drop(mem);
         let mut this = Self {
             n,

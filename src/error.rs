@@ -2,7 +2,23 @@
 //!
 //! Every variant says *what* went wrong in words a user can act on: invalid
 //! input names the field path and the offending value, a solver failure
-//! carries its full iteration history.
+//! carries its full iteration history. The failures of a layer are typed
+//! data of their own ([`GeometryError`], [`FactorError`], [`SingularError`],
+//! [`OutOfMemory`], [`FloatingBody`]) that the crate error only wraps: the
+//! message is rendered once, by `Display`, where the error is shown.
+//!
+//! They live here, below every layer that raises them, so that the crate
+//! error can name them without depending on a layer above it.
+
+mod factor;
+mod geometry;
+mod kernel;
+mod memory;
+
+pub use factor::FactorError;
+pub use geometry::{ContactPart, GeometryError};
+pub use kernel::{FloatingBody, SingularError};
+pub use memory::{OutOfMemory, Refusal};
 
 use crate::history::History;
 
@@ -19,18 +35,23 @@ pub enum Error {
     },
     /// A geometric query failed (projection, degenerate Jacobian, ...).
     #[error("geometry: {0}")]
-    Geometry(String),
-    /// A linear system could not be factorised.
+    Geometry(GeometryError),
+    /// A sparse factorisation failed. Running out of memory is kind
+    /// [`ErrorKind::OutOfMemory`] and says so; every other failure is a
+    /// singular kernel, which is how the tables of failures tag it.
+    #[error("{}: {}", if .0.is_out_of_memory() { "out of memory" } else { "singular kernel" }, .0)]
+    Factor(FactorError),
+    /// A linear system could not be built or solved.
     #[error("singular kernel: {0}")]
-    Singular(String),
+    Singular(SingularError),
     /// A factorisation or kernel could not allocate its storage: the
     /// problem is too large for the memory left.
     #[error("out of memory: {0}")]
-    OutOfMemory(String),
-    /// Every potential contact point is open and the secant matrix lost the
-    /// rigid-body support that contact provided.
+    OutOfMemory(OutOfMemory),
+    /// The load pulls a body along a rigid mode that neither a support nor
+    /// contact can hold.
     #[error("active set empty: the body floats ({0})")]
-    Floating(String),
+    Floating(FloatingBody),
     /// The nonlinear iteration stopped without meeting its tolerances.
     #[error("{reason} after {} iterations (last relative residual {:.3e})", history.len(), history.last_relative_residual())]
     NotConverged { reason: String, history: History },
@@ -62,12 +83,32 @@ impl Error {
         }
     }
 
+    /// Shorthand for [`Error::OutOfMemory`]: the storage `what` could not
+    /// be allocated.
+    pub fn out_of_memory(what: &'static str, refusal: impl Into<Refusal>) -> Self {
+        Error::OutOfMemory(OutOfMemory {
+            what,
+            refusal: refusal.into(),
+        })
+    }
+
+    /// A [`Error::Geometry`] with the context `f` adds (the body, the
+    /// contact pair it happened on); any other error unchanged.
+    pub fn map_geometry(self, f: impl FnOnce(GeometryError) -> GeometryError) -> Self {
+        match self {
+            Error::Geometry(g) => Error::Geometry(f(g)),
+            other => other,
+        }
+    }
+
     /// What kind of failure this is, for a program that acts on it (a
     /// study that tabulates failures, a test that expects one).
     pub fn kind(&self) -> ErrorKind {
         match self {
             Error::InvalidInput { .. } => ErrorKind::InvalidInput,
             Error::Geometry(_) => ErrorKind::Geometry,
+            Error::Factor(e) if e.is_out_of_memory() => ErrorKind::OutOfMemory,
+            Error::Factor(_) => ErrorKind::SingularKernel,
             Error::Singular(_) => ErrorKind::SingularKernel,
             Error::OutOfMemory(_) => ErrorKind::OutOfMemory,
             Error::Floating(_) => ErrorKind::FloatingBody,
@@ -112,6 +153,30 @@ impl ErrorKind {
 impl std::fmt::Display for ErrorKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.tag())
+    }
+}
+
+impl From<GeometryError> for Error {
+    fn from(e: GeometryError) -> Self {
+        Error::Geometry(e)
+    }
+}
+
+impl From<FactorError> for Error {
+    fn from(e: FactorError) -> Self {
+        Error::Factor(e)
+    }
+}
+
+impl From<SingularError> for Error {
+    fn from(e: SingularError) -> Self {
+        Error::Singular(e)
+    }
+}
+
+impl From<FloatingBody> for Error {
+    fn from(e: FloatingBody) -> Self {
+        Error::Floating(e)
     }
 }
 

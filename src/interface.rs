@@ -128,7 +128,7 @@ pub fn fold(
     }
     t.extend(couplings.iter().map(|&(i, j)| Triplet::new(i, j, 0.0)));
     SparseColMat::try_new_from_triplets(n, n, &t)
-        .map_err(|e| Error::OutOfMemory(format!("the joined stiffness: {e:?}")))
+        .map_err(|e| Error::out_of_memory("the joined stiffness", e))
 }
 
 /// Sums a vector over the split free DOFs into the joined ones.

@@ -18,7 +18,7 @@ use iga_contact::resources::{parse_size, Budget};
 use iga_contact::scene::Scene;
 use iga_contact::solver::Warning;
 use iga_contact::timing::Stopwatch;
-use iga_contact::Error;
+use iga_contact::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -111,8 +111,8 @@ fn run(scene_path: &Path, out: Option<PathBuf>, max_memory: Option<String>) -> R
             // A failed solve has no active set to judge; where the bodies
             // first touch tells whether a penalty below its bound may be why.
             if matches!(
-                e,
-                Error::NotConverged { .. } | Error::Singular(_) | Error::Floating(_)
+                e.kind(),
+                ErrorKind::NotConverged | ErrorKind::SingularKernel | ErrorKind::FloatingBody
             ) {
                 if let Ok(c) = scene.check(&budget) {
                     warn(scene_path, &c.warnings);

@@ -6,7 +6,7 @@ use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Lo
 use crate::contact::nitsche::{add_force, add_force_size_at, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint, Contacts, Master};
 use crate::dofs::{Body, DofMap};
-use crate::error::{Error, Result};
+use crate::error::{Error, FloatingBody, Result, SingularError};
 use crate::wellposed::{free_modes, RigidBasis};
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::DMatrix;
@@ -263,9 +263,9 @@ impl Problem {
             for &(b, j) in &free {
                 let col = &idx[ptr[j]..ptr[j + 1]];
                 for &(a, i) in &free {
-                    let at = col.binary_search(&i).map_err(|_| {
-                        Error::Singular(format!("entry ({i}, {j}) outside the kernels' pattern"))
-                    })?;
+                    let at = col
+                        .binary_search(&i)
+                        .map_err(|_| SingularError::OutsidePattern { row: i, col: j })?;
                     val[ptr[j] + at] += m[(a, b)];
                 }
             }
@@ -288,7 +288,7 @@ impl Problem {
             .k
             .symbolic()
             .to_owned()
-            .map_err(|e| Error::OutOfMemory(format!("a kernel's pattern: {e:?}")))?;
+            .map_err(|e| Error::out_of_memory("a kernel's pattern", e))?;
         Ok(SparseColMat::new(symbolic, val))
     }
 
@@ -370,7 +370,7 @@ impl Problem {
                 .map(|(i, j, v)| Triplet::new(i, j, v))
                 .collect();
             SparseColMat::try_new_from_triplets(n, k, &t)
-                .map_err(|e| Error::Singular(format!("cannot build the low-rank factors: {e:?}")))
+                .map_err(|e| Error::Singular(SingularError::LowRankFactors(e)))
         };
         Ok(Some(KernelSplit {
             spd,
@@ -489,7 +489,7 @@ impl Problem {
     /// |P| ≥ 0, impossible if every ⟦r_n⟧ has the wrong sign (or there is
     /// no contact point at all).
     pub fn check_support(&self) -> Result<()> {
-        for r in self.floating_modes() {
+        for (mode, r) in self.floating_modes().into_iter().enumerate() {
             let rf: f64 = self
                 .map
                 .restrict(&r)
@@ -511,9 +511,12 @@ impl Problem {
                 jump * rf > 0.0
             });
             if !can_balance {
-                return Err(Error::Floating(
-                    "the load pulls a body away from every contact point and no support holds it, so no equilibrium exists".into(),
-                ));
+                return Err(FloatingBody {
+                    mode,
+                    load_work: rf,
+                    contact_points: self.points.len(),
+                }
+                .into());
             }
         }
         Ok(())

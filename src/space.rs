@@ -7,7 +7,7 @@ mod values;
 
 pub use values::ElementValues;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, GeometryError, Result};
 use crate::nurbs::{NurbsPatch, PatchBasis, Side};
 use crate::quadrature;
 use tables::SpanTables;
@@ -122,10 +122,12 @@ impl Space {
             .jacobian_of(&space.patch.basis_in_spans(e.spans, c[0], c[1]));
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if !(det.is_finite() && det != 0.0) {
-            return Err(Error::Geometry(format!(
-                "the geometric map is degenerate at (ξ, η) = ({}, {}): det J = {det:.3e}",
-                c[0], c[1]
-            )));
+            return Err(GeometryError::DegenerateMap {
+                xi: c[0],
+                eta: c[1],
+                det_j: det,
+            }
+            .into());
         }
         space.orientation = det.signum();
         Ok(space)
@@ -189,10 +191,13 @@ impl Space {
         }
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if (det * self.orientation).is_nan() || det * self.orientation <= 0.0 || !det.is_finite() {
-            return Err(Error::Geometry(format!(
-                "the geometric map is not invertible at (ξ, η) = ({xi}, {eta}): det J = {det:.3e} (patch orientation {:+})",
-                self.orientation
-            )));
+            return Err(GeometryError::NotInvertible {
+                xi,
+                eta,
+                det_j: det,
+                orientation: self.orientation,
+            }
+            .into());
         }
         let mut x = [0.0; 2];
         for (k, &a) in indices.iter().enumerate() {

@@ -3,7 +3,7 @@
 //! terms of the spline pressure space that couple neighbouring elements.
 
 use crate::dofs::Body;
-use crate::error::{Error, Result};
+use crate::error::{Error, GeometryError, Result};
 use crate::material::Plane;
 use crate::pressure::SplinePressure;
 use crate::space::{Element, ElementValues};
@@ -125,11 +125,12 @@ pub(super) fn projection_of(
     body: &Body,
     e: usize,
 ) -> Result<DMatrix<f64>> {
-    let chol = m.clone().cholesky().ok_or_else(|| {
-        Error::Geometry(format!(
-            "body `{}`, element {e}: the pressure mass matrix is not positive definite",
-            body.name
-        ))
-    })?;
+    let chol = m
+        .clone()
+        .cholesky()
+        .ok_or_else(|| GeometryError::PressureMass {
+            body: body.name.clone(),
+            element: e,
+        })?;
     Ok(chol.solve(g))
 }

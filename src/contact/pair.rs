@@ -10,7 +10,7 @@ pub use super::point::{ContactPoint, Role};
 use super::projection::{along_normal, closest_point, Projection};
 use crate::assembly::ElementStress;
 use crate::dofs::{Body, DofMap};
-use crate::error::{Error, Result};
+use crate::error::{ContactPart, Error, GeometryError, Result};
 use crate::material::Formulation;
 use crate::nurbs::{NurbsCurve, Side};
 use crate::pressure::SplinePressure;
@@ -271,7 +271,7 @@ fn one_side(
     let cuts = match pair.nitsche.integration {
         Integration::Gauss => Vec::new(),
         Integration::Segment => projected_master_knots(master.curve(), &slave_curve)
-            .map_err(|e| within(e, id, &slave_side(pair, bodies)))?,
+            .map_err(|e| within(e, id, slave_side(pair, bodies)))?,
     };
     for be in slave.space.boundary(pair.slave_side) {
         let first = points.len();
@@ -443,22 +443,22 @@ fn mixed_trace_constant(
     )
 }
 
-/// Words for the slave side of a pair, for messages.
-fn slave_side(pair: &ContactPair, bodies: &[Body]) -> String {
-    format!(
-        "the slave side {} of body {:?}",
-        pair.slave_side.name(),
-        bodies[pair.slave].name
-    )
+/// The slave side of a pair, for errors.
+fn slave_side(pair: &ContactPair, bodies: &[Body]) -> ContactPart {
+    ContactPart::SlaveSide {
+        side: pair.slave_side.name(),
+        body: bodies[pair.slave].name.clone(),
+    }
 }
 
 /// A geometry error of the contact of pair `id`, told as happening on
-/// `what`.
-fn within(e: Error, id: PairId, what: &str) -> Error {
-    match e {
-        Error::Geometry(m) => Error::Geometry(format!("contact[{}]: {what}: {m}", id.contact)),
-        other => other,
-    }
+/// `part`.
+fn within(e: Error, id: PairId, part: ContactPart) -> Error {
+    e.map_geometry(|cause| GeometryError::Contact {
+        contact: id.contact,
+        part,
+        cause: Box::new(cause),
+    })
 }
 
 fn max_degree(b: &Body) -> usize {
@@ -499,7 +499,7 @@ fn make_point(
     let space = &slave.space;
     let (shape, own_normal, len) = space
         .side_shape(be, t)
-        .map_err(|e| within(e, id, &slave_side(pair, bodies)))?;
+        .map_err(|e| within(e, id, slave_side(pair, bodies)))?;
     let x = shape.x;
     // The mirrored half of the unbiased form measures the gap of the other
     // half: along its own normal, to the point of the other body on that
@@ -511,15 +511,14 @@ fn make_point(
         closest_point(master.curve(), x)
     };
     let pr: Projection = found.map_err(|e| {
-        let what = match master {
-            MasterGeometry::Rigid(_) => "the rigid master curve".to_string(),
-            MasterGeometry::Body { body, side, .. } => format!(
-                "the master side {} of body {:?}",
-                side.name(),
-                bodies[*body].name
-            ),
+        let part = match master {
+            MasterGeometry::Rigid(_) => ContactPart::RigidMaster,
+            MasterGeometry::Body { body, side, .. } => ContactPart::MasterSide {
+                side: side.name(),
+                body: bodies[*body].name.clone(),
+            },
         };
-        within(e, id, &what)
+        within(e, id, part)
     })?;
     if !pr.orthogonal {
         return Ok(None);

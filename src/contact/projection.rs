@@ -1,7 +1,7 @@
 //! Closest-point projection of a slave point onto a master curve: the x̄²
 //! of Eq. (4)–(5).
 
-use crate::error::{Error, Result};
+use crate::error::{GeometryError, Result};
 use crate::nurbs::NurbsCurve;
 
 /// Where a point projects on a curve.
@@ -34,9 +34,7 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 /// parameter range, and a step that increases the distance is halved.
 pub fn closest_point(curve: &NurbsCurve, x: [f64; 2]) -> Result<Projection> {
     if !(x[0].is_finite() && x[1].is_finite()) {
-        return Err(Error::Geometry(format!(
-            "cannot project the non-finite point {x:?}"
-        )));
+        return Err(GeometryError::NonFinitePoint { point: x }.into());
     }
     let (lo, hi) = (curve.knots.first(), curve.knots.last());
     let dist2 = |t: f64| {
@@ -83,9 +81,7 @@ pub fn closest_point(curve: &NurbsCurve, x: [f64; 2]) -> Result<Projection> {
     let (c, dc) = curve.point_and_tangent(t);
     let len = dc[0].hypot(dc[1]);
     if len.is_nan() || len <= 0.0 || !c[0].is_finite() || !c[1].is_finite() {
-        return Err(Error::Geometry(format!(
-            "cannot project {x:?}: the curve is degenerate at t = {t} (zero tangent)"
-        )));
+        return Err(GeometryError::ZeroTangent { point: x, t }.into());
     }
     let tangent = [dc[0] / len, dc[1] / len];
     let r = sub(c, x);
@@ -140,9 +136,7 @@ pub fn along_normal(curve: &NurbsCurve, x: [f64; 2], n: [f64; 2]) -> Result<Proj
     let (c, dc) = curve.point_and_tangent(t);
     let len = dc[0].hypot(dc[1]);
     if len.is_nan() || len <= 0.0 {
-        return Err(Error::Geometry(format!(
-            "cannot intersect the normal line at {x:?}: the curve is degenerate at t = {t}"
-        )));
+        return Err(GeometryError::NormalLineDegenerate { point: x, t }.into());
     }
     let r = sub(c, x);
     Ok(Projection {

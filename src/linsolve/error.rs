@@ -1,51 +1,22 @@
-//! Why a factorisation fails, as data.
+//! [`FactorError`]s from faer's errors: which of faer's refusals means
+//! what for the matrix.
 
-use crate::error::Error;
+use crate::error::FactorError;
 use faer::sparse::linalg::{LltError, LuError};
 use faer::sparse::FaerError;
 
-/// Why a factorisation failed, as data: what decides whether another
-/// method can take over ([`FactorError::lu_may_help`]) and what the user
-/// is told (rendered once, by `Display`, when the crate error prints it).
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum FactorError {
-    /// Cholesky met a pivot that is not positive: the matrix is not
-    /// symmetric positive definite (LU may still factorise it).
-    #[error("{what}: pivot {pivot} is not positive, so the matrix is not positive definite")]
-    NotPositiveDefinite { what: &'static str, pivot: usize },
-    /// LU found no pivot in column `index`: the matrix is structurally
-    /// singular.
-    #[error("{what}: no pivot in column {index}")]
-    SymbolicSingular { what: &'static str, index: usize },
-    /// The factorisation could not allocate its storage.
-    #[error("{what}: out of memory")]
-    OutOfMemory { what: &'static str },
-    /// Any other refusal of faer's (an index overflow: the matrix is too
-    /// large for its index type).
-    #[error("{what}: {error:?}")]
-    Faer {
-        what: &'static str,
-        error: FaerError,
-    },
-    /// The capacitance matrix I + Vᵀ S⁻¹ U of a [`super::LowRankCorrected`]
-    /// factorisation is singular: the Woodbury identity does not apply.
-    #[error("the low-rank capacitance matrix I + Vᵀ S⁻¹ U is singular")]
-    CapacitanceSingular,
-    /// The set-up check of a [`super::LowRankCorrected`] factorisation failed,
-    /// plain and refined: its relative forward errors (S nearly singular).
-    #[error("the low-rank solve is inaccurate: forward error {plain:.1e} on the set-up check, {refined:.1e} with refinement (S nearly singular?)")]
-    LowRankInaccurate { plain: f64, refined: f64 },
-}
-
 impl FactorError {
-    pub(super) fn of_faer(what: &'static str, e: FaerError) -> Self {
+    /// The failure of step `what` (a symbolic analysis, say) that faer
+    /// reports as a generic error: out of memory, or an index overflow.
+    pub fn of_faer(what: &'static str, e: FaerError) -> Self {
         match e {
             FaerError::OutOfMemory => FactorError::OutOfMemory { what },
             error => FactorError::Faer { what, error },
         }
     }
 
-    pub(super) fn of_llt(what: &'static str, e: LltError) -> Self {
+    /// The failure of the sparse Cholesky factorisation `what`.
+    pub fn of_llt(what: &'static str, e: LltError) -> Self {
         match e {
             LltError::Numeric(
                 faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index },
@@ -54,44 +25,11 @@ impl FactorError {
         }
     }
 
-    pub(super) fn of_lu(what: &'static str, e: LuError) -> Self {
+    /// The failure of the sparse LU factorisation `what`.
+    pub fn of_lu(what: &'static str, e: LuError) -> Self {
         match e {
             LuError::SymbolicSingular { index } => FactorError::SymbolicSingular { what, index },
             LuError::Generic(g) => Self::of_faer(what, g),
-        }
-    }
-
-    /// Whether LU may factorise the matrix where this method failed: a
-    /// non-positive Cholesky pivot says the matrix is not positive
-    /// definite, a failed Woodbury solve that the low-rank identity lost
-    /// accuracy; neither says LU fails. Running out of memory, a
-    /// structurally singular matrix or an index overflow would not be
-    /// helped by LU, which needs more memory and the same pattern.
-    pub fn lu_may_help(&self) -> bool {
-        matches!(
-            self,
-            FactorError::NotPositiveDefinite { .. }
-                | FactorError::CapacitanceSingular
-                | FactorError::LowRankInaccurate { .. }
-        )
-    }
-
-    /// Whether the factorisation ran out of memory ([`Error::OutOfMemory`];
-    /// every other failure is an [`Error::Singular`] kernel).
-    pub fn is_out_of_memory(&self) -> bool {
-        matches!(self, FactorError::OutOfMemory { .. })
-    }
-}
-
-// The crate error keeps the two kinds it always had (`singular_kernel`,
-// `out_of_memory`) and the message, rendered here once; the error module
-// naming this one would make the root type depend on a layer above it.
-impl From<FactorError> for Error {
-    fn from(e: FactorError) -> Self {
-        if e.is_out_of_memory() {
-            Error::OutOfMemory(e.to_string())
-        } else {
-            Error::Singular(e.to_string())
         }
     }
 }

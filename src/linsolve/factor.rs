@@ -1,9 +1,8 @@
 //! Numeric factorisations of one pattern's matrices, reusing their
 //! symbolic analyses: Cholesky, LU, and the low-rank corrected Cholesky.
 
-use super::error::FactorError;
 use super::low_rank::LowRankCorrected;
-use crate::error::{Error, Result};
+use crate::error::{FactorError, Result, SingularError};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
 use faer::sparse::SparseColMat;
@@ -40,9 +39,7 @@ impl Factor {
         if x.iter().all(|v| v.is_finite()) {
             Ok(x)
         } else {
-            Err(Error::Singular(
-                "the solve produced non-finite values".into(),
-            ))
+            Err(SingularError::NonFiniteSolution.into())
         }
     }
 }

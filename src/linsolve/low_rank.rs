@@ -1,8 +1,8 @@
 //! The exact Cholesky-plus-low-rank solve of a matrix that is symmetric
 //! positive definite up to a correction of low rank.
 
-use super::error::FactorError;
 use super::pattern::{mul, mul_transpose};
+use crate::error::FactorError;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::Llt;
 use faer::sparse::SparseColMat;

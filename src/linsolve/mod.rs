@@ -8,7 +8,7 @@ mod factor;
 mod low_rank;
 mod pattern;
 
-pub use error::FactorError;
+pub use crate::error::FactorError;
 pub use factor::{Factor, Factoriser, Method};
 pub use low_rank::{LowRankCorrected, LOW_RANK_CHECK_TOL};
 pub use pattern::{mul, mul_transpose, Pattern};

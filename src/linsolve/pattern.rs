@@ -1,7 +1,7 @@
 //! A fixed sparsity pattern whose values are refilled cheaply, and the
 //! products with its matrices.
 
-use crate::error::{Error, Result};
+use crate::error::{Result, SingularError};
 use crate::sparse::Triplets;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
@@ -28,9 +28,7 @@ impl Pattern {
                 .flat_map(|t| t.rows.iter().copied().zip(t.cols.iter().copied()))
         };
         if let Some((i, j)) = entries().find(|&(i, j)| i >= n || j >= n) {
-            return Err(Error::Singular(format!(
-                "cannot build the sparsity pattern: entry ({i}, {j}) outside {n} × {n}"
-            )));
+            return Err(SingularError::OutsideMatrix { row: i, col: j, n }.into());
         }
         // bucket the triplets by column
         let mut start = vec![0usize; n + 1];

@@ -9,7 +9,7 @@
 //! O(n p) memory, where a dense solve would cost O(n³) and O(n²).
 
 use super::knots::KnotVector;
-use crate::error::{Error, Result};
+use crate::error::{GeometryError, Result};
 
 /// The LU factors of a collocation matrix, in band storage: entry (k, j)
 /// at `band[k * width + (j + p - k)]` for |j − k| ≤ p.
@@ -25,10 +25,11 @@ impl Collocation {
         let n = knots.n_basis();
         let p = knots.degree();
         if tau.len() != n {
-            return Err(Error::Geometry(format!(
-                "interpolation needs {n} points for {n} basis functions, got {}",
-                tau.len()
-            )));
+            return Err(GeometryError::InterpolationPointCount {
+                basis: n,
+                points: tau.len(),
+            }
+            .into());
         }
         let width = 2 * p + 1;
         let mut band = vec![0.0; n * width];
@@ -39,10 +40,11 @@ impl Collocation {
                 let j = span - p + a;
                 if j.abs_diff(k) > p {
                     if v != 0.0 {
-                        return Err(Error::Geometry(format!(
-                            "interpolation point {t} is too far from the support of basis \
-                             function {k} (Schoenberg–Whitney condition violated)"
-                        )));
+                        return Err(GeometryError::FarFromSupport {
+                            point: t,
+                            function: k,
+                        }
+                        .into());
                     }
                     continue;
                 }
@@ -53,11 +55,11 @@ impl Collocation {
         for k in 0..n {
             let pivot = band[at(k, k)];
             if !(pivot.is_finite() && pivot.abs() > 0.0) {
-                return Err(Error::Geometry(format!(
-                    "interpolation point {} does not lie in the support of basis function {k} \
-                     (Schoenberg–Whitney condition violated)",
-                    tau[k]
-                )));
+                return Err(GeometryError::OutsideSupport {
+                    point: tau[k],
+                    function: k,
+                }
+                .into());
             }
             for i in k + 1..(k + p + 1).min(n) {
                 let l = band[at(i, k)] / pivot;

@@ -22,7 +22,7 @@
 use super::curve::NurbsCurve;
 use super::knots::KnotVector;
 use super::patch::NurbsPatch;
-use crate::error::{Error, Result};
+use crate::error::{Error, GeometryError, Result};
 
 /// Spline coefficients with `dim` components each, coefficient i at
 /// `data[i * dim..(i + 1) * dim]`.
@@ -334,28 +334,29 @@ fn missing_knots(old: &[f64], new: &[f64]) -> std::result::Result<Vec<f64>, f64>
 /// raised by the degree difference.
 pub fn respace(old: &KnotVector, new: &KnotVector, coef: &[f64], dim: usize) -> Result<Vec<f64>> {
     if new.degree() < old.degree() || new.first() != old.first() || new.last() != old.last() {
-        return Err(Error::Geometry(
-            "refinement must keep the parameter range and not lower the degree".into(),
-        ));
+        return Err(GeometryError::RefinementNotNested {
+            old_degree: old.degree(),
+            new_degree: new.degree(),
+            old_range: [old.first(), old.last()],
+            new_range: [new.first(), new.last()],
+        }
+        .into());
     }
     if coef.len() != old.n_basis() * dim {
-        return Err(Error::Geometry(format!(
-            "{} coefficients of dimension {dim} do not match {} basis functions",
-            coef.len(),
-            old.n_basis()
-        )));
+        return Err(GeometryError::CoefficientCount {
+            coefficients: coef.len(),
+            dim,
+            basis: old.n_basis(),
+        }
+        .into());
     }
     let t = new.degree() - old.degree();
     let mut raised = old.clone();
     for _ in 0..t {
         raised = raised.elevated();
     }
-    let extra = missing_knots(raised.knots(), new.knots()).map_err(|k| {
-        Error::Geometry(format!(
-            "knot {k} needs a higher multiplicity in the refined space to keep the continuity \
-             (the refined space must contain the old one)"
-        ))
-    })?;
+    let extra = missing_knots(raised.knots(), new.knots())
+        .map_err(|knot| GeometryError::KnotMultiplicity { knot })?;
     let pw = Coefs {
         dim,
         data: coef.to_vec(),

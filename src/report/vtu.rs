@@ -16,7 +16,7 @@
 
 use crate::assembly::{displacement_at, ElementStress};
 use crate::dofs::{Body, DofMap};
-use crate::error::{Error, Result};
+use crate::error::{Error, GeometryError, Result};
 use crate::material::Formulation;
 use crate::pressure::SplinePressure;
 use crate::space::{Element, Shape, Space};
@@ -388,11 +388,13 @@ fn sample_shape(space: &Space, e: &Element, xi: f64, eta: f64, det_ref: f64) -> 
         }
     }
     match first {
-        Ok(s) => Err(Error::Geometry(format!(
-            "the geometric map is nearly singular at (ξ, η) = ({xi}, {eta}) and around it: \
-             det J = {:.3e} against {det_ref:.3e} at the element centre",
-            s.det_j
-        ))),
+        Ok(s) => Err(GeometryError::NearlySingular {
+            xi,
+            eta,
+            det_j: s.det_j,
+            centre: det_ref,
+        }
+        .into()),
         Err(e) => Err(e),
     }
 }
@@ -475,10 +477,11 @@ pub fn sample_bodies(
             let det_ref = space
                 .shape(e, 0.5 * (xa + xb), 0.5 * (ya + yb))
                 .map_err(|err| {
-                    Error::Geometry(format!(
-                        "body `{}`, element spans {:?}: {err}",
-                        body.name, e.spans
-                    ))
+                    err.map_geometry(|cause| GeometryError::Element {
+                        body: body.name.clone(),
+                        spans: e.spans,
+                        cause: Box::new(cause),
+                    })
                 })?
                 .det_j;
             let base = mesh.points.len() as i64;
@@ -495,8 +498,12 @@ pub fn sample_bodies(
                     } else {
                         xa + (xb - xa) * i as f64 / s as f64
                     };
-                    let shape = sample_shape(space, e, xi, eta, det_ref)
-                        .map_err(|err| Error::Geometry(format!("body `{}`: {err}", body.name)))?;
+                    let shape = sample_shape(space, e, xi, eta, det_ref).map_err(|err| {
+                        err.map_geometry(|cause| GeometryError::Sample {
+                            body: body.name.clone(),
+                            cause: Box::new(cause),
+                        })
+                    })?;
                     let u = displacement_at(map, u_full, bi, &e.cps, &shape);
                     let (sig, szz) = stress_of.stress(map, u_full, bi, &shape, xi, eta);
                     mesh.points.push([shape.x[0], shape.x[1], 0.0]);

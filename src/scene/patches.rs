@@ -3,7 +3,7 @@
 //! scene's key paths.
 
 use super::{RefineSpec, Scene};
-use crate::error::{Error, Result};
+use crate::error::{Error, GeometryError, Result};
 use crate::geometry;
 use crate::nurbs::NurbsPatch;
 
@@ -39,8 +39,11 @@ pub(super) fn in_body(e: Error, i: usize, name: &str, geometry: &str) -> Error {
             };
             Error::invalid(field, value, format!("{reason} (body {name:?})"))
         }
-        Error::Geometry(m) => Error::Geometry(format!("body[{i}] ({name:?}): {m}")),
-        other => other,
+        other => other.map_geometry(|cause| GeometryError::Body {
+            index: i,
+            name: name.to_string(),
+            cause: Box::new(cause),
+        }),
     }
 }
 

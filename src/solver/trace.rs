@@ -21,7 +21,7 @@ use super::vector::norm;
 use crate::condense::Condensation;
 use crate::contact::nitsche::{add_force_at, add_force_size_at, local_matrix, Law};
 use crate::contact::ContactPoint;
-use crate::error::{Error, Result};
+use crate::error::{Result, SingularError};
 use crate::problem::{ContactState, Problem};
 use faer::linalg::solvers::Solve;
 use faer::Mat;
@@ -53,15 +53,16 @@ pub struct TraceProblem<'a> {
 pub const MAX_LAYER: usize = 9000;
 
 impl<'a> TraceProblem<'a> {
-    /// Factorises A₀ and condenses the load. Fails with
-    /// [`Error::Singular`] if A₀ is not positive definite.
+    /// Factorises A₀ and condenses the load. Fails with a
+    /// [`SingularError`] if A₀ is not positive definite.
     pub fn new(problem: &'a Problem) -> Result<Self> {
         let layer = problem.layer();
         if layer.len() > MAX_LAYER {
-            return Err(Error::Singular(format!(
-                "the contact layer has {} DOFs, more than the {MAX_LAYER} a dense trace kernel allows",
-                layer.len()
-            )));
+            return Err(SingularError::LayerTooLarge {
+                dofs: layer.len(),
+                max: MAX_LAYER,
+            }
+            .into());
         }
         let a0 = problem.bulk_plus_penalty_values()?;
         let cond = Condensation::new(
@@ -270,8 +271,9 @@ impl<'a> TraceProblem<'a> {
 pub struct DenseLu(faer::linalg::solvers::PartialPivLu<f64>);
 
 impl DenseLu {
-    /// Fails with [`Error::Singular`] when a pivot vanishes relative to
-    /// the largest (below 10⁻¹⁴ of it): the kernel does not hold the bodies.
+    /// Fails with [`SingularError::TraceKernel`] when a pivot vanishes
+    /// relative to the largest (below 10⁻¹⁴ of it): the kernel does not
+    /// hold the bodies.
     pub fn new(a: &Mat<f64>) -> Result<Self> {
         let lu = a.partial_piv_lu();
         let d = lu.U().diagonal().column_vector();
@@ -282,9 +284,11 @@ impl DenseLu {
         }
         let held = lo > 1e-14 * hi && hi.is_finite();
         if !held {
-            return Err(Error::Singular(format!(
-                "the trace kernel is singular (pivots from {lo:.2e} to {hi:.2e})"
-            )));
+            return Err(SingularError::TraceKernel {
+                smallest: lo,
+                largest: hi,
+            }
+            .into());
         }
         Ok(Self(lu))
     }
@@ -295,9 +299,7 @@ impl DenseLu {
         if x.iter().all(|v| v.is_finite()) {
             Ok(x)
         } else {
-            Err(Error::Singular(
-                "the solve produced non-finite values".into(),
-            ))
+            Err(SingularError::NonFiniteSolution.into())
         }
     }
 }

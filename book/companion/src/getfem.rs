@@ -225,12 +225,12 @@ pub fn parse(text: &str) -> Result<Peer> {
 /// coarse Lagrange interpolant of the disk folds near the end of the arc
 /// (Q2 on 4²), fewer points per element, as the dense profile does.
 fn samples(problem: &Problem) -> Result<Vec<ContactPoint>> {
-    let mut found = Err(Error::Geometry("no sample count".into()));
-    for per_element in [20, 16, 12, 10, 8, 6, 4] {
-        found = post::dense_contact_points(problem, per_element);
+    let mut found = post::dense_contact_points(problem, 20);
+    for per_element in [16, 12, 10, 8, 6, 4] {
         if !matches!(found, Err(Error::Geometry(_))) {
             break;
         }
+        found = post::dense_contact_points(problem, per_element);
     }
     let mut points: Vec<ContactPoint> = found?
         .into_iter()

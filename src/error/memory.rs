@@ -1,0 +1,60 @@
+//! Which storage could not be allocated, as data.
+
+use faer::dyn_stack::mem::AllocError;
+use faer::sparse::{CreationError, FaerError};
+use std::collections::TryReserveError;
+
+/// The storage `what` (the Cholesky factor, a kernel's pattern, ...) could
+/// not be allocated, and the allocator's refusal.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{what}: {refusal}")]
+pub struct OutOfMemory {
+    pub what: &'static str,
+    pub refusal: Refusal,
+}
+
+/// An allocator's refusal, as the library that allocated reports it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Refusal {
+    Faer(FaerError),
+    Creation(CreationError),
+    Reserve(TryReserveError),
+    Workspace(AllocError),
+}
+
+// faer renders its errors by their Debug form; the others read the same
+// way, so every out-of-memory message names the refusal as its type does.
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Refusal::Faer(e) => write!(f, "{e:?}"),
+            Refusal::Creation(e) => write!(f, "{e:?}"),
+            Refusal::Reserve(e) => write!(f, "{e:?}"),
+            Refusal::Workspace(e) => write!(f, "{e:?}"),
+        }
+    }
+}
+
+impl From<FaerError> for Refusal {
+    fn from(e: FaerError) -> Self {
+        Refusal::Faer(e)
+    }
+}
+
+impl From<CreationError> for Refusal {
+    fn from(e: CreationError) -> Self {
+        Refusal::Creation(e)
+    }
+}
+
+impl From<TryReserveError> for Refusal {
+    fn from(e: TryReserveError) -> Self {
+        Refusal::Reserve(e)
+    }
+}
+
+impl From<AllocError> for Refusal {
+    fn from(e: AllocError) -> Self {
+        Refusal::Workspace(e)
+    }
+}
