@@ -53,7 +53,10 @@ pub enum Error {
     #[error("active set empty: the body floats ({0})")]
     Floating(FloatingBody),
     /// The nonlinear iteration stopped without meeting its tolerances.
-    #[error("{reason} after {} iterations (last relative residual {:.3e})", history.len(), history.last_relative_residual())]
+    // the count first: the reason ends with the diagnosis, whose last part
+    // (a count of failed curvature conditions, say) must not read as if it
+    // were what happened after that many iterations
+    #[error("not converged after {} iterations (last relative residual {:.3e}): {reason}", history.len(), history.last_relative_residual())]
     NotConverged { reason: String, history: History },
     /// The output location cannot take the outputs (a file where a
     /// directory should be, no permission, foreign content): found before
