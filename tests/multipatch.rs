@@ -727,3 +727,40 @@ fn a_locking_multi_patch_body_is_told_to_refine_not_to_go_mixed() {
         .expect_err("mixed on a multi-patch body");
     assert!(e.to_string().contains("one-patch bodies only"), "{e}");
 }
+
+#[test]
+fn a_zone_pressed_up_to_a_singular_element_is_warned_with_the_sharp_penalty_too() {
+    // hertz.toml at 16 times the load with the sharp penalty (factor 2):
+    // γ follows the singular element's C_T, so that element's points open
+    // while the last regular point is still pressed; the zone's end is
+    // judged there (it was not: no warning and half_width 0.0707, the
+    // corner's distance). Followed, the four-patch disk takes the zone on.
+    let heavy = |file: &str, n: usize| {
+        let mut scene = companion::shipped(file)
+            .unwrap()
+            .refined("disk", RefineSpec::iga(2, [n, n]))
+            .unwrap()
+            .with_nitsche(|x| {
+                x.penalty = iga_contact::contact::Penalty::Sharp;
+                x.penalty_factor = 2.0;
+            });
+        for l in &mut scene.loads {
+            if let assembly::Load::BodyForce { force, .. } = l {
+                force[1] *= 16.0;
+            }
+        }
+        let problem = scene.build().unwrap();
+        solve(&problem, &scene.solver).unwrap().warnings
+    };
+    let w = heavy("hertz.toml", 32);
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, Warning::ZoneAtSideEnd { singular: true, .. })),
+        "{w:?}"
+    );
+    let w = heavy("hertz_multipatch.toml", 16);
+    assert!(
+        !w.iter().any(|w| matches!(w, Warning::ZoneAtSideEnd { .. })),
+        "{w:?}"
+    );
+}

@@ -6,7 +6,7 @@ use companion::hertz as setup;
 
 use iga_contact::post::{PressureProfile, PROFILE_SAMPLES_PER_ELEMENT};
 use iga_contact::report::atomic::{read_manifest, MANIFEST};
-use iga_contact::scene::{files, Scene};
+use iga_contact::scene::{files, RefineSpec, Scene};
 use iga_contact::solver::{self, SolverOptions};
 use iga_contact::Error;
 use std::path::{Path, PathBuf};
@@ -907,7 +907,7 @@ fn rejected() -> Vec<Reject> {
             "contact[1]",
             "slave \"upper\" against the master of contact[0]",
         )
-        .says(&["half of the pressure"]),
+        .says(&["the pressure is shared between them"]),
         // the same interface again with the roles swapped
         reject(
             base_with(
@@ -928,6 +928,17 @@ fn rejected() -> Vec<Reject> {
             "contact[1]",
             "slave \"upper\" against the master of contact[0]",
         ),
+        // a parallel floor just below the first: the first hides it
+        reject(
+            master("{ rigid_segment = { from = [-1.0, 0.5], to = [2.0, 0.5] } }").replacen(
+                "[solver]",
+                "[[contact]]\nslave = \"upper\"\nslave_side = \"eta_min\"\nmaster = { rigid_segment = { from = [-1.0, 0.4999], to = [2.0, 0.4999] } }\n\n[solver]",
+                1,
+            ),
+            "contact[1]",
+            "slave \"upper\" against the master of contact[0]",
+        )
+        .says(&["one hides the other"]),
         // the lower block's bottom faces away from the upper block
         reject(
             master("{ body = \"lower\", side = \"eta_min\" }"),
@@ -949,6 +960,8 @@ fn rejected() -> Vec<Reject> {
         reject(nitsche("theta = nan"), "contact[0].nitsche.theta", "nan"),
         reject(nitsche("penalty_factor = 0"), "contact[0].nitsche.penalty_factor", "0"),
         reject(nitsche("penalty_factor = -2.5"), "contact[0].nitsche.penalty_factor", "-2.5"),
+        reject(nitsche("penalty_factor = 1e300"), "contact[0].nitsche.penalty_factor", "1e300").says(&["round-off"]),
+        reject(nitsche("penalty_factor = 1e-13"), "contact[0].nitsche.penalty_factor", "1e-13"),
         reject(nitsche("gauss_points = 0"), "contact[0].nitsche.gauss_points", "0"),
         // solver and outputs
         reject(base_with("rtol = 1e-10", "rtol = 0.0"), "solver.rtol", "0"),
@@ -1212,4 +1225,27 @@ fn two_floors_side_by_side_under_one_slave_side_are_two_contacts() {
     let scene = Scene::from_toml_str(&text).unwrap();
     let problem = scene.build().unwrap();
     assert_eq!(problem.contacts.len(), 2);
+}
+
+#[test]
+fn a_slave_side_of_singular_elements_only_still_gets_its_figure() {
+    // hertz.toml on one element: the one slave element touches the disk's
+    // singular corner, so no profile sample is regular; the solve is not
+    // thrown away for the figure, which draws the brackets and says so
+    let mut scene = companion::shipped("hertz.toml")
+        .unwrap()
+        .refined("disk", RefineSpec::iga(2, [1, 1]))
+        .unwrap();
+    scene.output = iga_contact::scene::OutputSpec {
+        figures: true,
+        pressure_profile: true,
+        ..Default::default()
+    };
+    let dir = std::env::temp_dir().join(format!("iga-one-element-{}", std::process::id()));
+    scene.run(&dir).unwrap();
+    let svg = std::fs::read_to_string(dir.join("pressure_profile.svg")).unwrap();
+    assert!(svg.contains("singular map: brackets, not pressures"));
+    let csv = std::fs::read_to_string(dir.join("pressure_profile.csv")).unwrap();
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",0")), "{csv}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

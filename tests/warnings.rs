@@ -472,3 +472,51 @@ fn a_slave_that_closes_where_it_faces_away_is_warned_and_the_advice_fixes_it() {
     assert!(warnings.is_empty(), "{warnings:?}");
     assert!(error.abs() < RIGHT, "p₀ {error:+.3e} off Hertz");
 }
+
+#[test]
+fn a_slave_side_edge_on_to_its_master_is_warned_and_the_advice_fixes_it() {
+    // the block's right side as the slave against the floor under it: the
+    // block sinks until the side's lowest points pass the floor; the
+    // bottom, which faces the floor, carries the uniform pressure
+    let text = String::from(
+        "title = \"block side against floor\"\n\
+           [[body]]\nname = \"block\"\n\
+           geometry = { rectangle = { x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 } }\n\
+           refine = { degree = 2, elements = [4, 16] }\n\
+           material = { young = 1.0e7, poisson = 0.3, plane = \"strain\" }\n\
+           [[support]]\nbody = \"block\"\nside = \"xi_min\"\ncomponent = \"x\"\n\
+           [[load]]\npressure = { body = \"block\", side = \"eta_max\", pressure = 1.0e4 }\n\
+           [[contact]]\nslave = \"block\"\nslave_side = \"xi_max\"\n\
+           master = { rigid_segment = { from = [-0.5, 0.0], to = [1.5, 0.0] } }\n",
+    );
+    let solved = |text: &str| {
+        let scene = Scene::from_toml_str(text).unwrap();
+        let problem = scene.build().unwrap();
+        let sol = solve(&problem, &scene.solver).unwrap();
+        let f = iga_contact::post::contact_resultant(&problem, &sol.full);
+        (sol.warnings, f)
+    };
+    let (w, _) = solved(&text);
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, Warning::ClosedFacingAway { .. })),
+        "{w:?}"
+    );
+    // followed: the bottom; that side's own penalty warning is then
+    // followed too (its factor is judged on real gaps now)
+    let bottom = text.replace("slave_side = \"xi_max\"", "slave_side = \"eta_min\"");
+    let (w, _) = solved(&bottom);
+    let factor = match &w[..] {
+        [Warning::PenaltyBelowBound {
+            remedy: PenaltyRemedy::Factor(f),
+            ..
+        }] => *f,
+        [] => 1.0,
+        other => panic!("{other:?}"),
+    };
+    let (w, f) = solved(&format!(
+        "{bottom}nitsche = {{ penalty_factor = {factor:?} }}\n"
+    ));
+    assert!(w.is_empty(), "{w:?}");
+    assert!((f[1] - 1.0e4).abs() < 1e-8 * 1.0e4, "{f:?}");
+}

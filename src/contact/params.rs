@@ -145,6 +145,14 @@ pub enum Modulus {
     Max,
 }
 
+/// The range of `penalty_factor`. γ is the factor times E/h, and the
+/// stiffness it is added to is of order E/h too: twelve decades apart, with
+/// the system's own conditioning on top, one of the two is lost in the
+/// other's 1e-16 round-off. The penalty studies' range (1e-12 to 1e6) lies
+/// inside.
+pub const MIN_PENALTY_FACTOR: f64 = 1e-12;
+pub const MAX_PENALTY_FACTOR: f64 = 1e12;
+
 /// Largest number of Gauss points per contact element or segment.
 pub const MAX_GAUSS_POINTS: usize = 30;
 
@@ -195,6 +203,19 @@ impl Nitsche {
                 format!("{field}.penalty_factor"),
                 self.penalty_factor,
                 "must be positive and finite",
+            ));
+        }
+        if !(MIN_PENALTY_FACTOR..=MAX_PENALTY_FACTOR).contains(&self.penalty_factor) {
+            return Err(Error::invalid(
+                format!("{field}.penalty_factor"),
+                // as written in a scene: 1e300, not three hundred digits
+                format!("{:e}", self.penalty_factor),
+                format!(
+                    "must lie in {MIN_PENALTY_FACTOR:e}..={MAX_PENALTY_FACTOR:e}: beyond, the \
+                     penalty against the stiffness falls below or rises above the round-off \
+                     of double precision, so the contact terms vanish in the stiffness or \
+                     swamp it (and γ itself can overflow)"
+                ),
             ));
         }
         if let Some(n) = self.gauss_points {

@@ -169,18 +169,28 @@ impl Scene {
             let pairs = problem.contacts.len();
             let series: Vec<plot::Series> = (0..pairs)
                 .map(|k| {
-                    // where the map is singular the bracket is not a pressure
-                    let points = problem
-                        .contacts
-                        .pieces(k)
-                        .flat_map(|r| profile.pair(r))
-                        .filter(|p| p.regular)
+                    let samples = || problem.contacts.pieces(k).flat_map(|r| profile.pair(r));
+                    // where the map is singular the bracket is not a
+                    // pressure, and is left out; a slave side of elements
+                    // that all touch a singular corner (one element on
+                    // the nine-point disk) has nothing else, so its
+                    // brackets are drawn and the legend says what they are
+                    let regular = samples().any(|p| p.regular);
+                    let points = samples()
+                        .filter(|p| p.regular || !regular)
                         .map(|p| (p.x[0], p.pressure()))
                         .collect();
-                    let label = if pairs > 1 {
+                    let name = if pairs > 1 {
                         format!("contact[{k}]")
                     } else {
                         String::new()
+                    };
+                    let label = match (regular, name.is_empty()) {
+                        (true, _) => name,
+                        (false, true) => "singular map: brackets, not pressures".to_string(),
+                        (false, false) => {
+                            format!("{name} (singular map: brackets, not pressures)")
+                        }
                     };
                     plot::Series::line(label, points)
                 })

@@ -95,7 +95,7 @@ impl fmt::Display for Halt {
                 rtol,
             } => write!(
                 f,
-                "the residual stays at {relative:.1e} of its initial value, above the {RESOLVABLE:e} that round-off may excuse (it can mask up to {level:.1e} here: K u and the contact forces at displacements up to {max_displacement:.3e}) and above rtol = {rtol:e}, so this iterate is no root: a penalty too small to hold the bodies lets them move that far (raise each contact[c].nitsche.penalty_factor), or the input's scale is extreme"
+                "the residual stays at {relative:.1e} of its initial value, above the {RESOLVABLE:e} that round-off may excuse (it can mask up to {level:.1e} here: K u and the contact forces at displacements up to {max_displacement:.3e}) and above rtol = {rtol:e}, so this iterate is no root: a penalty too small to hold the bodies lets them move that far (raise the nitsche.penalty_factor of the contacts), or the input's scale is extreme"
             ),
             // the fraction as the book's tables print a percentage (`{:.0} %`)
             Halt::Stalled => write!(

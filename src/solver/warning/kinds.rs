@@ -189,8 +189,9 @@ pub enum Warning {
         elements: usize,
     },
     /// Active points of contact `contact` lie where its slave faces away
-    /// from the master: the master is behind the slave's surface, the gap
-    /// closed there is measured through the slave body, and what the
+    /// from the master, or meets it edge-on: the master is behind (or in
+    /// line with) the slave's surface, the gap closed there is measured
+    /// through the slave body (or along its surface), and what the
     /// solution holds there is no contact of the two surfaces. The set-up
     /// refuses a contact that starts closed that way; this one closed
     /// under the load (a disk's top drawn as slave against the floor it is
@@ -398,7 +399,7 @@ impl std::fmt::Display for Warning {
                 active,
             } => write!(
                 f,
-                "contact[{contact}]: {away} of the {active} active points lie where the slave {slave:?} faces away from its master, so their gaps are measured through the body and the answer there is no contact of the two surfaces: give contact[{contact}] the slave side (or boundary) of {slave:?} that faces the master, or, for a rigid master, the direction that puts the obstacle on the body's side (it lies on the right of `from` → `to`)"
+                "contact[{contact}]: {away} of the {active} active points lie where the slave {slave:?} faces away from its master or meets it edge-on, so their gaps are measured through the body or along its surface and the answer there is no contact of the two surfaces: give contact[{contact}] the slave side (or boundary) of {slave:?} that faces the master, or, for a rigid master, the direction that puts the obstacle on the body's side (it lies on the right of `from` → `to`)"
             ),
             Warning::UnresolvedContact {
                 contact,

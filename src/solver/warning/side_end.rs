@@ -52,11 +52,29 @@ fn cut_off(
     let pair = &problem.pairs[k];
     let slave = &bodies[pair.slave];
     let curve = slave.space.patch.side_curve(pair.slave_side);
-    let own = (0..points.len()).filter(|&q| points[q].pair == k && points[q].role == Role::Slave);
+    let own: Vec<usize> = (0..points.len())
+        .filter(|&q| points[q].pair == k && points[q].role == Role::Slave)
+        .collect();
     let by_t = |&a: &usize, &b: &usize| points[a].t.total_cmp(&points[b].t);
-    let (q, t) = match end {
-        SideEnd::Start => (own.min_by(by_t)?, curve.knots.first()),
-        SideEnd::End => (own.max_by(by_t)?, curve.knots.last()),
+    let last = |qs: &mut dyn Iterator<Item = usize>| match end {
+        SideEnd::Start => qs.min_by(by_t),
+        SideEnd::End => qs.max_by(by_t),
+    };
+    let t = match end {
+        SideEnd::Start => curve.knots.first(),
+        SideEnd::End => curve.knots.last(),
+    };
+    let q = last(&mut own.iter().copied())?;
+    // In an element at a singular corner the bracket is 1/det J of the
+    // stress, not a contact pressure, and its points may open while the
+    // zone presses on up to that element (measured: the half disk at 16
+    // times the load with the sharp penalty, whose γ grows with that
+    // element's C_T: its points open, the last regular one carries
+    // 6 MPa). There the zone's end is judged at the last regular point.
+    let q = if !points[q].regular && p[q] > 0.0 {
+        last(&mut own.iter().copied().filter(|&q| points[q].regular)).unwrap_or(q)
+    } else {
+        q
     };
     if p[q] > 0.0 {
         return None;
@@ -93,7 +111,7 @@ fn cut_off(
         },
         end,
         at,
-        singular: !points[q].regular,
+        singular: !points[last(&mut own.iter().copied())?].regular,
     })
 }
 

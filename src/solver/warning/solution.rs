@@ -65,7 +65,10 @@ pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
         let away = (0..p.len())
             .filter(|&q| {
                 let cp = &problem.points[q];
-                pieces.contains(&cp.pair) && p[q] <= 0.0 && cp.faces_away()
+                // edge-on counts too: a side at right angles to the master
+                // reaches it only at its end, where it is no contact
+                // surface (a block's right side against the floor)
+                pieces.contains(&cp.pair) && p[q] <= 0.0 && !cp.faces_master()
             })
             .count();
         if away > 0 {
