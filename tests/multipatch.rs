@@ -764,3 +764,47 @@ fn a_zone_pressed_up_to_a_singular_element_is_warned_with_the_sharp_penalty_too(
         "{w:?}"
     );
 }
+
+#[test]
+fn the_half_width_of_a_boundary_is_the_same_whichever_way_its_pieces_run() {
+    // hertz_multipatch.toml mirrored: the whole `arc` as the slave, pushed
+    // up against a ceiling at y = 0.4. The profile is the floor's mirror
+    // image, so p₀ and the half-width must agree with the floor's; the
+    // zone lies on a piece whose side runs against the boundary, which
+    // cut the zone into runs out of order (half_width 0.0187, not 0.0470)
+    let base = std::fs::read_to_string(companion::shipped_path("hertz_multipatch.toml")).unwrap();
+    let ceiling = base
+        .replacen(
+            "slave_boundary = \"arc_lower\"",
+            "slave_boundary = \"arc\"",
+            1,
+        )
+        .replacen(
+            "from = [-0.2, 0.0], to = [0.4, 0.0]",
+            "from = [0.4, 0.4], to = [-0.2, 0.4]",
+            1,
+        )
+        .replacen("force = [0.0, -1.3e6]", "force = [0.0, 1.3e6]", 1);
+    assert_ne!(ceiling, base);
+    let measure = |text: &str| {
+        let scene = Scene::from_toml_str(text).unwrap();
+        let problem = scene.build().unwrap();
+        let sol = solve(&problem, &scene.solver).unwrap();
+        let profile = PressureProfile::dense(&problem, &sol.full).unwrap();
+        profile.measures_joined(problem.contacts.pieces(0))
+    };
+    let (floor, up) = (measure(&base), measure(&ceiling));
+    assert!(
+        rel(up.p0, floor.p0) < 1e-9,
+        "{} against {}",
+        up.p0,
+        floor.p0
+    );
+    assert!(
+        rel(up.half_width, floor.half_width) < 1e-9,
+        "{} against {}",
+        up.half_width,
+        floor.half_width
+    );
+    assert_eq!((up.zones, floor.zones), (1, 1));
+}
