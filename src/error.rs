@@ -56,7 +56,7 @@ pub enum Error {
     // the count first: the reason ends with the diagnosis, whose last part
     // (a count of failed curvature conditions, say) must not read as if it
     // were what happened after that many iterations
-    #[error("not converged after {} iterations (last relative residual {:.3e}): {reason}", history.len(), history.last_relative_residual())]
+    #[error("not converged after {} iteration{} (last relative residual {:.3e}): {reason}", history.len(), if history.len() == 1 { "" } else { "s" }, history.last_relative_residual())]
     NotConverged { reason: String, history: History },
     /// The output location cannot take the outputs (a file where a
     /// directory should be, no permission, foreign content): found before

@@ -502,6 +502,18 @@ fn a_slave_side_edge_on_to_its_master_is_warned_and_the_advice_fixes_it() {
             .any(|w| matches!(w, Warning::ClosedFacingAway { .. })),
         "{w:?}"
     );
+    // the side tilted 6° from upright grazes the floor: warned too
+    let tilted = text.replace(
+        "geometry = { rectangle = { x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 } }",
+        "geometry = { quadrilateral = { corners = [[0.0, 0.0], [1.0, 0.0], [1.05, 0.5], [0.0, 0.5]] } }",
+    );
+    assert_ne!(tilted, text);
+    let (w, _) = solved(&tilted);
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, Warning::ClosedFacingAway { .. })),
+        "{w:?}"
+    );
     // followed: the bottom; that side's own penalty warning is then
     // followed too (its factor is judged on real gaps now)
     let bottom = text.replace("slave_side = \"xi_max\"", "slave_side = \"eta_min\"");

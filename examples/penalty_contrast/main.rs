@@ -546,6 +546,8 @@ struct ThetaRun {
     /// p₀ of BFGS against the rigid plane with θ = 0; `None` if BFGS
     /// failed.
     deviation: Option<f64>,
+    /// Newton failed (counted with BFGS's failures, as in Table PS3).
+    newton_failed: bool,
     iterations: Cell,
 }
 
@@ -569,6 +571,7 @@ fn solve_thetas() -> Result<Vec<ThetaRow>> {
                 let r = Both::solve(&problem)?;
                 runs.push(ThetaRun {
                     deviation: r.bfgs.as_ref().ok().map(|o| relative(o.p0, rigid0)),
+                    newton_failed: r.newton.is_err(),
                     iterations: r.iterations(),
                 });
             }
@@ -641,7 +644,7 @@ fn record_theta_facts(
     let failures = rows
         .iter()
         .flat_map(|r| &r.runs)
-        .filter(|run| run.deviation.is_none())
+        .filter(|run| run.deviation.is_none() || run.newton_failed)
         .count();
     f.count("contrast_all_failures", contrast_failures + failures)?;
     f.count("rigid_theta1_active", rigid.active)?;

@@ -70,7 +70,20 @@ pub struct ContactPoint {
 /// map, not a direction.
 pub const PERPENDICULAR: f64 = 1e-8;
 
+/// The cosine between the slave's normal and n¹ below which an active point
+/// meets its master at a grazing angle (more than 60° off): no contact
+/// surface does that where it carries load (Hertz under 16 times the load
+/// reaches 45° at the edge of its zone); a side drawn nearly edge-on to
+/// the master (a block's side tilted 6° from upright against a floor) does.
+pub const GRAZING: f64 = 0.5;
+
 impl ContactPoint {
+    /// Whether the point meets its master at a grazing angle, edge-on, or
+    /// faces away from it ([`GRAZING`]).
+    pub fn grazes(&self) -> bool {
+        self.facing < GRAZING
+    }
+
     /// Whether the side of the point faces away from its master (beyond
     /// round-off of perpendicular normals).
     pub fn faces_away(&self) -> bool {

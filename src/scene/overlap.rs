@@ -56,8 +56,9 @@ impl Scene {
                     Some(Overlap::Same) => "already joins this slave side to this master",
                     Some(Overlap::Parallel) => {
                         "joins this slave side to a rigid segment that overlaps this one in \
-                         the same direction on the same or a parallel line, so one hides the \
-                         other (the slave reaches the farther only through the nearer)"
+                         the same direction, on a line within a thousandth of its direction, \
+                         so one hides the other (the slave reaches the farther only through \
+                         the nearer)"
                     }
                     None => continue,
                 };

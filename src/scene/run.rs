@@ -202,7 +202,10 @@ impl Scene {
                 log_x: false,
                 log_y: false,
             };
-            plot::line_chart(set.dir().join(files::FIGURE), &axes, &series)?;
+            // staged, not written into `set.dir()`: a stage holds the
+            // set's lock, so a signal cannot race the file's creation
+            let svg = plot::line_chart_svg(Path::new(files::FIGURE), &axes, &series)?;
+            set.stage(files::FIGURE, svg.as_bytes())?;
         }
         if o.iterations {
             let notes: Vec<String> = solution

@@ -83,9 +83,9 @@ pub(crate) fn failure(
     let skipped = history.skipped_updates();
     if skipped > 0 {
         parts.push(if skipped == 1 {
-            "the BFGS curvature condition failed at 1 iteration (its pair was skipped)".to_string()
+            "the BFGS curvature condition failed in 1 iteration (its pair was skipped)".to_string()
         } else {
-            format!("the BFGS curvature condition failed at {skipped} iterations (their pairs were skipped)")
+            format!("the BFGS curvature condition failed in {skipped} iterations (their pairs were skipped)")
         });
     }
     Error::NotConverged {

@@ -170,12 +170,17 @@ impl OutputSet {
             ));
         }
         let mpath = self.staging.join(MANIFEST);
+        // A write into the staging holds the registry, as `stage_with`
+        // does: a signal arriving now waits, and then removes the whole
+        // staging instead of racing a file being created in it.
+        let registry = active();
         let synced = (|| {
             let mut f = File::create(&mpath)?;
             f.write_all(manifest.as_bytes())?;
             f.sync_all()?;
             sync_tree(&self.staging)
         })();
+        drop(registry);
         synced.map_err(|e| io_error(&self.staging, e))?;
         let mut known = self.known.clone();
         known.extend(files.iter().map(|(n, _)| n.clone()));

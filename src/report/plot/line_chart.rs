@@ -4,7 +4,8 @@ use super::bounds::{check_finite, Bounds};
 use super::layout::{Frame, LINE_CHART_HEIGHT, WIDTH};
 use super::palette::palette;
 use super::render::{
-    chart_region, draw_axes, draw_box, draw_header, marker_outline, render, DrawResult, Figure,
+    chart_region, draw_axes, draw_box, draw_header, marker_outline, render, svg_text, DrawResult,
+    Figure,
 };
 use super::{Axes, Color, LegendEntry, Series};
 use crate::error::{Error, Result};
@@ -20,6 +21,13 @@ use std::path::Path;
 pub fn line_chart(path: impl AsRef<Path>, axes: &Axes, series: &[Series]) -> Result<()> {
     let fig = LineChart::new(axes, series)?;
     render(path.as_ref(), &fig)
+}
+
+/// [`line_chart`] as SVG text, for an output set to stage (`name` names
+/// the figure in an error).
+pub fn line_chart_svg(name: &Path, axes: &Axes, series: &[Series]) -> Result<String> {
+    let fig = LineChart::new(axes, series)?;
+    svg_text(name, &fig)
 }
 
 struct LineChart {

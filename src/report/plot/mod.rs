@@ -57,6 +57,6 @@ pub use figure::{
     Stroke,
 };
 pub use geometry::geometry_figure;
-pub use line_chart::line_chart;
+pub use line_chart::{line_chart, line_chart_svg};
 pub use palette::{viridis, Color, BLACK_INDEX, PALETTE, WHITE_INDEX};
 pub use ticks::typographic_minus;

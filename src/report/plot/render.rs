@@ -73,6 +73,25 @@ pub(super) trait Figure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB>;
 }
 
+/// The SVG text of `fig`, for a caller that stages it itself (an output
+/// set, whose writes hold its lock); `name` names it in an error.
+pub(super) fn svg_text(name: &Path, fig: &impl Figure) -> Result<String> {
+    ensure_fonts();
+    let failed = |e: String| Error::Io {
+        path: name.display().to_string(),
+        source: std::io::Error::other(format!("drawing the figure failed: {e}")),
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, fig.frame().size).into_drawing_area();
+        fig.draw(&root).map_err(|e| failed(e.to_string()))?;
+        root.present().map_err(|e| failed(e.to_string()))?;
+    }
+    // plotters escapes markup but passes control characters through,
+    // which no XML reader accepts.
+    Ok(crate::report::xml::xml_safe(&svg).into_owned())
+}
+
 pub(super) fn render(path: &Path, fig: &impl Figure) -> Result<()> {
     ensure_fonts();
     let size = fig.frame().size;
@@ -84,15 +103,7 @@ pub(super) fn render(path: &Path, fig: &impl Figure) -> Result<()> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !png {
-        let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-            fig.draw(&root).map_err(|e| failed(e.to_string()))?;
-            root.present().map_err(|e| failed(e.to_string()))?;
-        }
-        // plotters escapes markup but passes control characters through,
-        // which no XML reader accepts.
-        return write_atomic(path, crate::report::xml::xml_safe(&svg).as_bytes());
+        return write_atomic(path, svg_text(path, fig)?.as_bytes());
     }
     // The bitmap backend can only encode to a file; render next to the target
     // and move the bytes through write_atomic like every other output.

@@ -399,7 +399,7 @@ impl std::fmt::Display for Warning {
                 active,
             } => write!(
                 f,
-                "contact[{contact}]: {away} of the {active} active points lie where the slave {slave:?} faces away from its master or meets it edge-on, so their gaps are measured through the body or along its surface and the answer there is no contact of the two surfaces: give contact[{contact}] the slave side (or boundary) of {slave:?} that faces the master, or, for a rigid master, the direction that puts the obstacle on the body's side (it lies on the right of `from` → `to`)"
+                "contact[{contact}]: {away} of the {active} active points lie where the slave {slave:?} faces away from its master or meets it edge-on (more than 60° off its normal), so their gaps are measured through the body or along its surface and the answer there is no contact of the two surfaces: give contact[{contact}] the slave side (or boundary) of {slave:?} that faces the master, or, for a rigid master, the direction that puts the obstacle on the body's side (it lies on the right of `from` → `to`)"
             ),
             Warning::UnresolvedContact {
                 contact,

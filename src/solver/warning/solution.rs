@@ -65,10 +65,11 @@ pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
         let away = (0..p.len())
             .filter(|&q| {
                 let cp = &problem.points[q];
-                // edge-on counts too: a side at right angles to the master
-                // reaches it only at its end, where it is no contact
-                // surface (a block's right side against the floor)
-                pieces.contains(&cp.pair) && p[q] <= 0.0 && !cp.faces_master()
+                // edge-on and grazing count too: a side at (nearly) right
+                // angles to the master reaches it only at its end, where it
+                // is no contact surface (a block's right side against the
+                // floor, upright or tilted)
+                pieces.contains(&cp.pair) && p[q] <= 0.0 && cp.grazes()
             })
             .count();
         if away > 0 {
