@@ -60,7 +60,6 @@ pub(crate) fn failure(
                 .iter()
                 .map(|&q| problem.contacts.of(problem.points[q].pair))
                 .collect();
-            contacts.dedup();
             contacts.sort_unstable();
             contacts.dedup();
             let key = |name: &str| {

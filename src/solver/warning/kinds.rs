@@ -205,6 +205,21 @@ pub enum Warning {
 }
 
 impl Warning {
+    /// The contact the warning is about, if it is about one (the others are
+    /// about a body).
+    pub fn contact(&self) -> Option<usize> {
+        match self {
+            Warning::PenaltyBelowBound { contact, .. }
+            | Warning::PenaltyFarAboveBound { contact, .. }
+            | Warning::PenaltyLoose { contact, .. }
+            | Warning::StifferSlave { contact, .. }
+            | Warning::ZoneAtSideEnd { contact, .. }
+            | Warning::UnresolvedContact { contact, .. }
+            | Warning::ClosedFacingAway { contact, .. } => Some(*contact),
+            Warning::NearlyIncompressible { .. } => None,
+        }
+    }
+
     /// A short note for the iteration history, for the warnings that
     /// concern the iteration itself (a penalty below its bound).
     pub fn note(&self) -> Option<String> {

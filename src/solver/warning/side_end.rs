@@ -64,17 +64,17 @@ fn cut_off(
         SideEnd::Start => curve.knots.first(),
         SideEnd::End => curve.knots.last(),
     };
-    let q = last(&mut own.iter().copied())?;
+    let q_end = last(&mut own.iter().copied())?;
     // In an element at a singular corner the bracket is 1/det J of the
     // stress, not a contact pressure, and its points may open while the
     // zone presses on up to that element (measured: the half disk at 16
     // times the load with the sharp penalty, whose γ grows with that
     // element's C_T: its points open, the last regular one carries
     // 6 MPa). There the zone's end is judged at the last regular point.
-    let q = if !points[q].regular && p[q] > 0.0 {
-        last(&mut own.iter().copied().filter(|&q| points[q].regular)).unwrap_or(q)
+    let q = if !points[q_end].regular && p[q_end] > 0.0 {
+        last(&mut own.iter().copied().filter(|&q| points[q].regular)).unwrap_or(q_end)
     } else {
-        q
+        q_end
     };
     if p[q] > 0.0 {
         return None;
@@ -111,7 +111,7 @@ fn cut_off(
         },
         end,
         at,
-        singular: !points[last(&mut own.iter().copied())?].regular,
+        singular: !points[q_end].regular,
     })
 }
 

@@ -99,14 +99,10 @@ pub fn warnings(problem: &Problem, full: &[f64]) -> Vec<Warning> {
             _ => None,
         })
         .collect();
-    out.retain(|w| match w {
-        Warning::ClosedFacingAway { .. } => true,
-        Warning::PenaltyBelowBound { contact, .. }
-        | Warning::PenaltyFarAboveBound { contact, .. }
-        | Warning::PenaltyLoose { contact, .. }
-        | Warning::ZoneAtSideEnd { contact, .. }
-        | Warning::UnresolvedContact { contact, .. } => !through.contains(contact),
-        Warning::StifferSlave { .. } | Warning::NearlyIncompressible { .. } => true,
+    // (the choice of slave is a set-up matter, which stands)
+    out.retain(|w| match (w, w.contact()) {
+        (Warning::ClosedFacingAway { .. } | Warning::StifferSlave { .. }, _) | (_, None) => true,
+        (_, Some(c)) => !through.contains(&c),
     });
     out
 }
