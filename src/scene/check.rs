@@ -2,9 +2,11 @@
 //! assembling or solving.
 
 use super::build::MapCheck;
-use super::Scene;
+use super::{OutputSpec, Scene};
 use crate::contact::pair::checked_contact_points;
-use crate::error::Result;
+use crate::dofs::Body;
+use crate::error::{Error, Result};
+use crate::report::vtu;
 use crate::resources::{human_bytes, human_count, Budget, Estimate};
 use crate::solver;
 use crate::wellposed;
@@ -45,13 +47,15 @@ impl fmt::Display for CheckReport {
 impl Scene {
     /// Everything [`Scene::run`] checks before it solves — validity, the
     /// resource estimate against `budget`, the geometric map of every
-    /// body at every quadrature point, the contact points and the rigid
-    /// modes — without assembling or solving anything.
+    /// body at every quadrature point, that a requested VTU can be
+    /// sampled, the contact points and the rigid modes — without
+    /// assembling or solving anything.
     pub fn check(&self, budget: &Budget) -> Result<CheckReport> {
         let valid = self.valid()?;
         let estimate = valid.estimate()?;
         estimate.check(budget, "output.vtu_subdivisions")?;
         let d = valid.discretise(MapCheck::EveryPoint)?;
+        vtu_samplable(&self.output, &d.bodies)?;
         let points = checked_contact_points(&d.bodies, &d.map, &d.pairs, &d.contacts)?;
         wellposed::check_rigid_modes(&d.bodies, &d.map, &points)?;
         let warnings = solver::warning::before_solve(&d.bodies, &d.pairs, &d.contacts, &points);
@@ -64,4 +68,21 @@ impl Scene {
             warnings,
         })
     }
+}
+
+/// With `vtu = true`, refuses (as a bad `output.vtu`, exit 2) bodies the VTU
+/// sampler cannot evaluate ([`vtu::check_sampling`]): the solution does not
+/// change where samples are taken, so this is known before the solve and
+/// must not cost one.
+pub(super) fn vtu_samplable(output: &OutputSpec, bodies: &[Body]) -> Result<()> {
+    if !output.vtu {
+        return Ok(());
+    }
+    vtu::check_sampling(bodies).map_err(|e| {
+        Error::invalid(
+            "output.vtu",
+            true,
+            format!("the fields cannot be sampled ({e}); set `vtu = false`"),
+        )
+    })
 }

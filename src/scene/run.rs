@@ -58,6 +58,8 @@ impl Scene {
             Some(OutputSet::begin_expecting(out_dir, &o.file_names())?)
         };
         let problem = valid.assemble(&mut clock)?;
+        super::check::vtu_samplable(o, &problem.bodies)?;
+        clock.lap(Phase::ParseAndBuild);
         let solution = solver::solve(&problem, &self.solver)?;
         let solve = clock.take();
         let factorisation = solution.phases.condensation.min(solve);
@@ -87,9 +89,14 @@ impl Scene {
                     active_points,
                     stability: &stability,
                 };
-                self.stage_outputs(&mut set, &problem, &solution, &outputs, &mut clock)?;
+                let target = set.target().to_path_buf();
+                let unwritten =
+                    self.stage_outputs(&mut set, &problem, &solution, &outputs, &mut clock)?;
                 let files = set.commit()?;
                 clock.lap(Phase::Output);
+                if let Some(e) = unwritten {
+                    return Err(vtu_not_written(&target, e));
+                }
                 files
             }
         };
@@ -112,6 +119,8 @@ impl Scene {
     /// Computes and stages every requested output: first what they are
     /// computed from (charged to post-processing), then the files (charged
     /// to output, up to the summary, which reports the times so far).
+    /// Returns why the VTU could not be sampled, if it could not, with the
+    /// other files staged: a solve is not thrown away for one output.
     fn stage_outputs(
         &self,
         set: &mut OutputSet,
@@ -119,7 +128,7 @@ impl Scene {
         solution: &solver::Solution,
         out: &Outputs,
         clock: &mut Stopwatch,
-    ) -> Result<()> {
+    ) -> Result<Option<Error>> {
         let Outputs {
             title,
             contact_force,
@@ -224,12 +233,18 @@ impl Scene {
                     .as_bytes(),
             )?;
         }
+        // what the solution decides (a non-finite field): where samples
+        // are taken was checked before the solve
+        let mut unwritten = None;
         if o.vtu {
-            let mesh = vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions)?;
-            mesh.validate()?;
-            let xml = mesh.to_xml();
-            drop(mesh);
-            set.stage(files::VTU, xml.as_bytes())?;
+            match vtu::sample_bodies(&problem.bodies, &problem.map, full, o.vtu_subdivisions) {
+                Ok(mesh) => {
+                    let xml = mesh.to_xml();
+                    drop(mesh);
+                    set.stage(files::VTU, xml.as_bytes())?;
+                }
+                Err(e) => unwritten = Some(e),
+            }
         }
         if let Some(applied_force) = applied_force {
             clock.lap(Phase::Output);
@@ -252,7 +267,19 @@ impl Scene {
                 .map_err(|e| Error::invalid("output.summary", title, e.to_string()))?;
             set.stage(files::SUMMARY, text.as_bytes())?;
         }
-        Ok(())
+        Ok(unwritten)
+    }
+}
+
+/// The error of a run whose VTU could not be sampled after the solve: it
+/// names the file, the cause, and says where the other outputs went.
+fn vtu_not_written(target: &Path, cause: Error) -> Error {
+    Error::Io {
+        path: target.join(files::VTU).display().to_string(),
+        source: std::io::Error::other(format!(
+            "not written: {cause}; the other outputs are in `{}`",
+            target.display()
+        )),
     }
 }
 
