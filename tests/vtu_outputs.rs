@@ -35,6 +35,49 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The displacement vector of [`affine`] at every control point.
+fn affine_at_control_points(bodies: &[Body], map: &DofMap) -> Vec<f64> {
+    let mut u = vec![0.0; map.n_total()];
+    for (bi, b) in bodies.iter().enumerate() {
+        for (a, p) in b.space.patch.points.iter().enumerate() {
+            let d = affine(*p);
+            u[map.global(bi, a, 0)] = d[0];
+            u[map.global(bi, a, 1)] = d[1];
+        }
+    }
+    u
+}
+
+/// Every sample of `mesh` (one body of `material`) carries the affine
+/// field at its drawn point and its constant stress D B.
+fn assert_affine_fields(mesh: &VtuMesh, material: &Material) {
+    let disp = &mesh.field("displacement").unwrap().values;
+    let stress = &mesh.field("stress").unwrap().values;
+    let exact = material.stress([B[0][0], B[1][1], B[0][1] + B[1][0]]);
+    let scale = exact.iter().fold(0.0f64, |a, s| a.max(s.abs()));
+    for (i, p) in mesh.points.iter().enumerate() {
+        let want = affine([p[0], p[1]]);
+        for c in 0..2 {
+            assert!(
+                (disp[3 * i + c] - want[c]).abs() <= 1e-15,
+                "point {i} at {p:?}: displacement {} vs {}",
+                disp[3 * i + c],
+                want[c]
+            );
+        }
+        for c in 0..3 {
+            // 1e-9: the gradients where det J is 1/10 of the centre's lose
+            // a few digits to cancellation, far below what a plot shows
+            assert!(
+                (stress[3 * i + c] - exact[c]).abs() <= 1e-9 * scale,
+                "point {i} at {p:?}: stress {} vs {}",
+                stress[3 * i + c],
+                exact[c]
+            );
+        }
+    }
+}
+
 /// The disk of `data/scenes/hertz_fem_q2.toml`: Q2 on 8 × 8 elements.
 fn q2_disk() -> (Vec<Body>, DofMap) {
     let exact = geometry::half_disk([0.0, 0.2], 0.2).unwrap();
@@ -93,12 +136,7 @@ fn the_folded_corners_of_the_q2_half_disk_are_sampled_exactly() {
     assert!(j[0][0] * j[1][1] - j[0][1] * j[1][0] < 0.0);
     check_sampling(&bodies).unwrap();
 
-    let mut u = vec![0.0; map.n_total()];
-    for (a, p) in space.patch.points.iter().enumerate() {
-        let d = affine(*p);
-        u[map.global(0, a, 0)] = d[0];
-        u[map.global(0, a, 1)] = d[1];
-    }
+    let u = affine_at_control_points(&bodies, &map);
     let mesh = sample_bodies(&bodies, &map, &u, SUBDIVISIONS).unwrap();
     assert_eq!(mesh.n_points(), 64 * 25);
 
@@ -112,30 +150,7 @@ fn the_folded_corners_of_the_q2_half_disk_are_sampled_exactly() {
             "corner ({xi}, {eta}) at {want:?} not drawn"
         );
     }
-    let disp = &mesh.field("displacement").unwrap().values;
-    let stress = &mesh.field("stress").unwrap().values;
-    let m = bodies[0].material;
-    let exact = m.stress([B[0][0], B[1][1], B[0][1] + B[1][0]]);
-    let scale = exact.iter().fold(0.0f64, |a, s| a.max(s.abs()));
-    for (i, p) in mesh.points.iter().enumerate() {
-        let want = affine([p[0], p[1]]);
-        for c in 0..2 {
-            assert!(
-                (disp[3 * i + c] - want[c]).abs() <= 1e-15,
-                "point {i} at {p:?}: displacement {} vs {}",
-                disp[3 * i + c],
-                want[c]
-            );
-            // 1e-9: the gradients where det J is 1/10 of the centre's lose
-            // a few digits to cancellation, far below what a plot shows
-            assert!(
-                (stress[3 * i + c] - exact[c]).abs() <= 1e-9 * scale,
-                "point {i} at {p:?}: stress {} vs {}",
-                stress[3 * i + c],
-                exact[c]
-            );
-        }
-    }
+    assert_affine_fields(&mesh, &bodies[0].material);
 
     let dir = root().join("target").join("vtu-check");
     std::fs::create_dir_all(&dir).unwrap();
@@ -235,4 +250,57 @@ fn an_element_without_a_regular_point_is_refused_by_the_sampling_check() {
         mesh.unwrap_err().to_string(),
         check_sampling(&bodies).unwrap_err().to_string()
     );
+}
+
+/// A mesh the solver accepts whose element centre folds: the second
+/// element of a cubic strip has x'(t) = 2 (t² − 0.2) on t ∈ [−1, 1], negative
+/// at its centre, positive at its two Gauss points ±1/√3 (the rule of
+/// `quadrature = 2`). The samples fall back on a Gauss point there.
+#[test]
+fn an_element_whose_centre_folds_is_sampled_from_its_gauss_points() {
+    let k0 = iga_contact::nurbs::KnotVector::new(
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
+        3,
+    )
+    .unwrap();
+    let k1 = iga_contact::nurbs::KnotVector::new(vec![0.0, 0.0, 1.0, 1.0], 1).unwrap();
+    // element 1: x = ξ; element 2: the Bézier net of 1 + f(t) − f(−1),
+    // f(t) = t³/3 − 0.2 t, t = 2(ξ − 1) − 1
+    let xs = [
+        0.0,
+        1.0 / 3.0,
+        2.0 / 3.0,
+        1.0,
+        23.0 / 15.0,
+        11.0 / 15.0,
+        19.0 / 15.0,
+    ];
+    let points: Vec<[f64; 2]> = [0.0, 1.0]
+        .iter()
+        .flat_map(|&y| xs.iter().map(move |&x| [x, y]))
+        .collect();
+    let patch = iga_contact::nurbs::NurbsPatch::new([k0, k1], points, vec![1.0; 14]).unwrap();
+    let space = Space::new(patch, Some(2)).unwrap();
+    let e = &space.elements[1];
+    assert!(space.shape(e, 1.5, 0.5).is_err(), "the centre must fold");
+    for q in space.quadrature(e).unwrap() {
+        assert!(q.shape.det_j > 0.0);
+    }
+    let bodies = vec![Body {
+        name: "strip".into(),
+        space,
+        material: Material::new(1.0, 0.3, Plane::Strain).unwrap(),
+        formulation: Formulation::Displacement,
+    }];
+    check_sampling(&bodies).unwrap();
+    let map = DofMap::builder(&bodies).build();
+    let u = affine_at_control_points(&bodies, &map);
+    let mesh = sample_bodies(&bodies, &map, &u, 2).unwrap();
+    assert_eq!(mesh.n_points(), 2 * 9);
+    // the folded centre line is drawn where it is: x(1.5) = 1 + f(0) − f(−1)
+    assert!(mesh
+        .points
+        .iter()
+        .any(|p| (p[0] - (1.0 + 2.0 / 15.0)).abs() < 1e-15));
+    assert_affine_fields(&mesh, &bodies[0].material);
 }
