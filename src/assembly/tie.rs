@@ -10,8 +10,8 @@
 //! the tied stiffness stays symmetric and, with γ large enough, positive
 //! definite; the third holds the two sides together.
 //!
-//! γ = β E (p + 1)(p + d)(1/h₁ + 1/h₂) at each point: the form of Eq. (11)
-//! with β = [`crate::dofs::TIE_FACTOR`] (a hundred times the contact's 0.1), E the
+//! γ = 0.1 β E (p + 1)(p + d)(1/h₁ + 1/h₂) at each point: Eq. (11) with
+//! penalty factor β = [`crate::dofs::TIE_FACTOR`] (ten times the paper's), E the
 //! larger modulus of the two patches, p the larger degree along the side
 //! and h_k the height of patch k's element across the interface (its area
 //! over its side's length), which is what the trace inequality that γ must
