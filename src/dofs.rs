@@ -11,9 +11,11 @@
 //! two patches share on a matching interface keep one global DOF per
 //! patch (so every per-patch loop reads its own numbering), and those
 //! copies map to one free DOF, which makes the displacement C⁰ across.
-//! Non-matching interfaces (tied weakly, by Nitsche) are not built.
+//! Non-matching interfaces keep their DOFs apart and are recorded as
+//! [`Tie`]s, which the assembly ties weakly, by Nitsche's method.
 
 use crate::error::{Error, Result};
+use crate::interface::{Interface, Tie};
 use crate::material::{Formulation, Material};
 use crate::nurbs::Side;
 use crate::space::Space;
@@ -42,7 +44,26 @@ pub struct DofMap {
     /// The class representative of every global DOF (itself unless a
     /// matching interface shares it).
     rep: Vec<usize>,
+    /// The non-matching interfaces, tied weakly.
+    ties: Vec<Tie>,
+    tie_factor: f64,
 }
+
+/// The factor β of the tie's penalty γ = 0.1 β E (p + 1)(p + d)(1/h₁ + 1/h₂)
+/// ([`crate::assembly::tie_stiffness`]): Eq. (11) with penalty factor β,
+/// here ten times the paper's 1. The symmetric tie is stable only above a multiple of the trace
+/// constant of the two sides' elements: on the Taylor lower block (p = 2,
+/// 3 against 4 elements up the interface) the tied body stops being
+/// positive definite below β ≈ 0.83, on the five-patch disk with its core
+/// refined apart from its arcs between 1 and 10 (`tests/taylor_patches.rs`),
+/// so 10 keeps a margin of about twelve on the first.
+pub const TIE_FACTOR: f64 = 10.0;
+
+/// Below this β a tie is refused: above the loss of definiteness measured
+/// on the Taylor block, so that a factor chosen by hand far below the
+/// default is told, not solved. It is a floor, not a guarantee: on the
+/// curved interfaces of the disk the loss lies higher, between 1 and 10.
+pub const MIN_TIE_FACTOR: f64 = 2.0;
 
 /// Collects Dirichlet conditions before numbering the free DOFs.
 pub struct DofMapBuilder<'a> {
@@ -54,6 +75,8 @@ pub struct DofMapBuilder<'a> {
     /// class (a circular list, to fix every copy of a shared DOF at once).
     parent: Vec<usize>,
     next: Vec<usize>,
+    ties: Vec<Tie>,
+    tie_factor: f64,
 }
 
 impl<'a> DofMapBuilder<'a> {
@@ -109,12 +132,33 @@ impl<'a> DofMapBuilder<'a> {
         self.next.swap(a, b);
     }
 
+    /// Sets the factor β of the penalty of every tie
+    /// ([`TIE_FACTOR`] unless set); refuses one below [`MIN_TIE_FACTOR`],
+    /// where the symmetric tie can make the body's stiffness indefinite.
+    pub fn tie_factor(&mut self, factor: f64) -> Result<&mut Self> {
+        if !(factor.is_finite() && (MIN_TIE_FACTOR..=1e12).contains(&factor)) {
+            return Err(Error::invalid(
+                "tie.penalty_factor",
+                format!("{factor:e}"),
+                format!(
+                    "must lie in {MIN_TIE_FACTOR}..=1e12: below, the symmetric Nitsche tie of a \
+                     non-matching interface can make the body's stiffness indefinite"
+                ),
+            ));
+        }
+        self.tie_factor = factor;
+        Ok(self)
+    }
+
     /// Makes the patches `patches` (indices into the bodies) one elastic
     /// body: every pair of sides that match (the same knots along the
     /// side, coincident control points and weights, either way round)
-    /// shares its control points. Call it before any `fix`. Fails, naming
-    /// the body and the patches, when two sides meet end to end without
-    /// matching or a patch shares no side with the others.
+    /// shares its control points; every pair that is one curve with two
+    /// bases is recorded as a [`Tie`]. Call it before any `fix`. Fails,
+    /// naming the body and the patches, when two sides meet but are not
+    /// one curve (or meet over only part of their length), when a tied
+    /// patch is not of the displacement formulation, or when a patch
+    /// shares no side with the others.
     pub fn join(&mut self, name: &str, patches: &[usize]) -> Result<&mut Self> {
         let group = self.group_of[patches[0]];
         for &p in patches {
@@ -130,23 +174,39 @@ impl<'a> DofMapBuilder<'a> {
                 let (pa, pb) = (&self.bodies[a].space.patch, &self.bodies[b].space.patch);
                 for sa in Side::ALL {
                     for sb in Side::ALL {
+                        let at =
+                            || format!("patches {ia} ({}) and {ib} ({})", sa.name(), sb.name());
                         let shared = match crate::interface::matching(pa, sa, pb, sb, size) {
-                            crate::interface::Interface::Apart => continue,
-                            crate::interface::Interface::NotMatching(why) => {
+                            Interface::Apart => continue,
+                            Interface::NotMatching(why) => {
                                 return Err(Error::invalid(
                                     format!("body {name:?}"),
-                                    format!(
-                                        "patches {ia} ({}) and {ib} ({})",
-                                        sa.name(),
-                                        sb.name()
-                                    ),
-                                    format!(
-                                        "the interface does not match ({why}); only matching \
-                                         interfaces are built, not Nitsche-tied ones"
-                                    ),
+                                    at(),
+                                    format!("the interface can be neither shared nor tied: {why}"),
                                 ));
                             }
-                            crate::interface::Interface::Matching(pairs) => pairs,
+                            Interface::NonMatching { reversed } => {
+                                let displacement = |p: usize| {
+                                    self.bodies[p].formulation == Formulation::Displacement
+                                };
+                                if !(displacement(a) && displacement(b)) {
+                                    return Err(Error::invalid(
+                                        format!("body {name:?}"),
+                                        at(),
+                                        "a non-matching interface is tied for the displacement \
+                                         formulation only (the tie's traction is D ε)",
+                                    ));
+                                }
+                                self.ties.push(Tie {
+                                    patches: [a, b],
+                                    sides: [sa, sb],
+                                    reversed,
+                                });
+                                joined[ia] = true;
+                                joined[ib] = true;
+                                continue;
+                            }
+                            Interface::Matching(pairs) => pairs,
                         };
                         joined[ia] = true;
                         joined[ib] = true;
@@ -216,12 +276,15 @@ impl<'a> DofMapBuilder<'a> {
             g
         };
         let rep: Vec<usize> = (0..self.fixed.len()).map(root).collect();
-        number(
+        let mut map = number(
             self.offsets.clone(),
             &self.fixed,
             rep,
             self.group_of.clone(),
-        )
+        );
+        map.ties = self.ties.clone();
+        map.tie_factor = self.tie_factor;
+        map
     }
 }
 
@@ -253,6 +316,8 @@ fn number(
         n_free,
         group_of,
         rep,
+        ties: Vec::new(),
+        tie_factor: TIE_FACTOR,
     }
 }
 
@@ -273,12 +338,24 @@ impl DofMap {
             group_of: (0..bodies.len()).collect(),
             parent: (0..n).collect(),
             next: (0..n).collect(),
+            ties: Vec::new(),
+            tie_factor: TIE_FACTOR,
         }
     }
 
     /// True when some patches share DOFs (a body of several patches).
     pub fn is_linked(&self) -> bool {
         self.rep.iter().enumerate().any(|(g, &r)| r != g)
+    }
+
+    /// The non-matching interfaces of the bodies, tied weakly.
+    pub fn ties(&self) -> &[Tie] {
+        &self.ties
+    }
+
+    /// The factor β of the ties' penalty ([`DofMapBuilder::tie_factor`]).
+    pub fn tie_factor(&self) -> f64 {
+        self.tie_factor
     }
 
     /// The elastic body that patch `b` belongs to (`b` itself unless

@@ -2,7 +2,9 @@
 //! and the residual (13) and kernels (17)–(18) the solvers need, all over
 //! the free DOFs.
 
-use crate::assembly::{load_vector, split_body_forces, stiffness_matrix, Bulk, Load};
+use crate::assembly::{
+    load_vector, split_body_forces, stiffness_matrix, tie_stiffness, Bulk, Load, Triplets,
+};
 use crate::contact::nitsche::{add_force, add_force_size_at, heaviside, local_matrix, Law};
 use crate::contact::{contact_points, ContactPair, ContactPoint, Contacts, Master};
 use crate::dofs::{Body, DofMap};
@@ -61,6 +63,41 @@ impl KernelSplit {
     }
 }
 
+/// `k` plus the triplets `t`, added in place where `k`'s pattern holds
+/// them (the couplings put them there); otherwise rebuilt with them.
+fn add_in_pattern(k: SparseColMat<usize, f64>, t: &Triplets) -> Result<SparseColMat<usize, f64>> {
+    if t.is_empty() {
+        return Ok(k);
+    }
+    let (symbolic, mut val) = k.into_parts();
+    let (ptr, idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    let mut all_in = true;
+    for ((&i, &j), &v) in t.rows.iter().zip(&t.cols).zip(&t.vals) {
+        match idx[ptr[j]..ptr[j + 1]].binary_search(&i) {
+            Ok(at) => val[ptr[j] + at] += v,
+            Err(_) => all_in = false,
+        }
+    }
+    if all_in {
+        return Ok(SparseColMat::new(symbolic, val));
+    }
+    // not expected: the entries of `k` as they were, and `t` beside them
+    let mut entries = Vec::with_capacity(val.len() + t.len());
+    for j in 0..symbolic.ncols() {
+        for at in ptr[j]..ptr[j + 1] {
+            entries.push(Triplet::new(idx[at], j, val[at]));
+        }
+    }
+    for ((&i, &j), &v) in t.rows.iter().zip(&t.cols).zip(&t.vals) {
+        if idx[ptr[j]..ptr[j + 1]].binary_search(&i).is_ok() {
+            continue;
+        }
+        entries.push(Triplet::new(i, j, v));
+    }
+    SparseColMat::try_new_from_triplets(symbolic.nrows(), symbolic.ncols(), &entries)
+        .map_err(|e| Error::out_of_memory("the tied stiffness", e))
+}
+
 /// Summary of the contact state at one displacement.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ContactState {
@@ -102,6 +139,10 @@ impl Problem {
                 couplings.extend(free.iter().map(|&j| (i, j)));
             }
         }
+        // the ties of non-matching interfaces couple DOFs no element joins:
+        // their entries join the pattern, and their values are added after
+        let (tie, tie_lift) = tie_stiffness(&bodies, &map, map.tie_factor())?;
+        couplings.extend(tie.rows.iter().copied().zip(tie.cols.iter().copied()));
         // body forces share the stiffness's quadrature
         let (forces, others) = split_body_forces(&bodies, loads)?;
         let Bulk { k, lift, body_load } = if map.is_linked() {
@@ -118,9 +159,10 @@ impl Problem {
         } else {
             stiffness_matrix(&bodies, &map, &couplings, &forces)?
         };
+        let k = add_in_pattern(k, &tie)?;
         let mut rhs = load_vector(&bodies, &map, &others)?;
-        for ((r, l), b) in rhs.iter_mut().zip(&lift).zip(&body_load) {
-            *r += b - l;
+        for (((r, l), b), t) in rhs.iter_mut().zip(&lift).zip(&body_load).zip(&tie_lift) {
+            *r += b - l - t;
         }
         Ok(Self {
             bodies,

@@ -1,6 +1,7 @@
 //! Bodies of several patches with matching interfaces: the builders'
 //! geometry is exact and regular, the joined DOF map reproduces affine
-//! fields across the interfaces, non-matching interfaces are refused, and
+//! fields across the interfaces, non-matching interfaces are tied (and
+//! sides meeting over part of their length refused), and
 //! the multi-patch Hertz scenes agree with the closed form.
 
 use iga_contact::assembly;
@@ -206,19 +207,40 @@ fn folded_stiffness_equals_the_joined_triplet_assembly() {
 }
 
 #[test]
-fn non_matching_interface_is_refused_naming_body_and_patches() {
+fn non_matching_interfaces_are_tied_and_partial_ones_refused_naming_body_and_patches() {
     let mp = disk_5(C, R).unwrap();
     let mut b = bodies(&mp, 2, [4, 3]);
-    // the core refined differently: its sides no longer match the arcs'
+    // the core refined differently: its sides no longer match the arcs',
+    // and are tied instead
     b[0] = bodies(&mp, 2, [5, 3]).swap_remove(0);
     assert_eq!(b[0].space.n_elements(), [5, 5]);
     let all: Vec<usize> = (0..b.len()).collect();
-    let e = DofMap::builder(&b)
-        .join("disk", &all)
+    let mut builder = DofMap::builder(&b);
+    builder.join("disk", &all).expect("tied");
+    assert_eq!(builder.build().ties().len(), 4);
+    // a block beside the lower half of another's right side: the sides
+    // meet over only part of their length
+    let material = b[0].material;
+    let block = |x0: f64, y1: f64| Body {
+        name: "blocks".into(),
+        space: Space::new(
+            iga_contact::geometry::rectangle(x0, 0.0, x0 + 1.0, y1).unwrap(),
+            None,
+        )
+        .unwrap(),
+        material,
+        formulation: Formulation::Displacement,
+    };
+    let two = [block(0.0, 1.0), block(1.0, 0.5)];
+    let e = DofMap::builder(&two)
+        .join("blocks", &[0, 1])
         .err()
         .expect("refused");
     let msg = e.to_string();
-    assert!(msg.contains("disk") && msg.contains("patches 0"), "{msg}");
+    assert!(
+        msg.contains("blocks") && msg.contains("patches 0") && msg.contains("part of their length"),
+        "{msg}"
+    );
     assert!(!msg.contains('\n'), "{msg}");
 }
 

@@ -12,7 +12,10 @@
 //! Run it with `cargo run --release --example taylor`.
 
 use companion::chapter::Chapter;
-use companion::taylor::{consistency, patch_errors, Exact, PatchErrors, SIDE_SAMPLES};
+use companion::taylor::{
+    blocks_problem, consistency, lower_elements, patch_errors, Exact, LowerBlock, PatchErrors,
+    SIDE_SAMPLES,
+};
 use companion::Facts;
 use iga_contact::assembly::Load;
 use iga_contact::contact::Integration;
@@ -150,6 +153,9 @@ fn main() -> Result<()> {
     let f = chapter.facts();
     record_paper_facts(f, &cases, map_max)?;
     record_case_facts(f, &cases)?;
+
+    // "A lower block of two patches": Table T7 and its facts.
+    write_patches(&mut chapter)?;
 
     // Figs. T1 to T3 and the VTU.
     mesh_figure(&chapter, segment)?;
@@ -370,6 +376,69 @@ fn record_case_facts(f: &mut Facts, cases: &[Case; 2]) -> Result<()> {
     f.number("relative_widening", widening, Format::Percent(0))
 }
 // ANCHOR_END: facts
+
+// ANCHOR: patches
+/// "A lower block of two patches": the segment rule's test with the lower
+/// block as one patch, as two matching patches and as two non-matching
+/// ones tied by Nitsche's method (Table T7, `patches`), the lower block
+/// the slave in all three.
+fn write_patches(chapter: &mut Chapter) -> Result<()> {
+    let scene = companion::shipped("taylor.toml")?;
+    let exact = exact(&scene);
+    let mut table = Table::new(vec![
+        Column::plain("lower_block", "lower block"),
+        Column::plain("elements", "elements (left, right)"),
+        Column::plain("ties", "tied interfaces"),
+        Column::plain("iterations", "BFGS iterations"),
+        Column::new(
+            "max_rel_error_syy",
+            "max |σ_yy + p|/p",
+            Unit::None,
+            Format::Sci(2),
+        ),
+        Column::new(
+            "max_displacement_error",
+            "max ‖u − u*‖",
+            Unit::Metre,
+            Format::Sci(2),
+        ),
+    ]);
+    for (lower, name) in [
+        (LowerBlock::One, "one_patch"),
+        (LowerBlock::Matching, "matching"),
+        (LowerBlock::NonMatching, "non_matching"),
+    ] {
+        let problem = blocks_problem(&scene, lower)?;
+        let solution = solve(&problem, &scene.solver)?;
+        let e = patch_errors(&problem, &solution.full, &exact)?;
+        let elements: Vec<String> = lower_elements(lower)
+            .iter()
+            .map(|[x, y]| format!("{x}×{y}"))
+            .collect();
+        table.push(vec![
+            name.replace('_', " ").into(),
+            elements.join(", ").into(),
+            problem.map.ties().len().into(),
+            solution.history.len().into(),
+            e.syy.into(),
+            e.displacement.into(),
+        ])?;
+        let f = chapter.facts();
+        f.number(&format!("{name}_syy_error"), e.syy, Format::Pow10(1))?;
+        f.number(
+            &format!("{name}_displacement_error"),
+            e.displacement,
+            Format::Pow10(1),
+        )?;
+    }
+    chapter.facts().number(
+        "tie_factor",
+        iga_contact::dofs::TIE_FACTOR,
+        Format::Fixed(0),
+    )?;
+    chapter.table("patches", &table)
+}
+// ANCHOR_END: patches
 
 // ANCHOR: figures
 /// Fig. T1 (the paper's Fig. 1): element boundaries and control nets of

@@ -3,7 +3,8 @@
 //!
 //! One file a concern: the element integrals (`element.rs`), the pressure
 //! terms of the mixed formulations (`mixed.rs`), stress recovery
-//! (`stress.rs`), loads (`load.rs`), and the two global paths: triplets
+//! (`stress.rs`), loads (`load.rs`), the Nitsche tie of non-matching patch
+//! interfaces (`tie.rs`), and the two global paths: triplets
 //! (`triplets.rs`, simple, the reference) and compressed columns (`csc.rs`,
 //! in place and in parallel: what the problem uses).
 
@@ -12,6 +13,7 @@ mod element;
 mod load;
 mod mixed;
 mod stress;
+mod tie;
 mod triplets;
 
 pub use crate::sparse::Triplets;
@@ -20,4 +22,5 @@ pub use element::{btdb, element_stiffness, element_stiffness_with};
 pub use load::{load_vector, split_body_forces, Load};
 pub use mixed::{pressure_basis, volumetric_terms};
 pub use stress::{displacement_at, strain_at, strain_stress, ElementStress};
+pub use tie::tie_stiffness;
 pub use triplets::stiffness;

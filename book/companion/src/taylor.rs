@@ -2,12 +2,17 @@
 //! state, for the Taylor chapter's program; `tests/taylor.rs` checks that
 //! the measures notice a wrong field.
 
-use iga_contact::assembly::{displacement_at, strain_at};
+use iga_contact::assembly::{displacement_at, strain_at, Load};
+use iga_contact::contact::{ContactPair, Contacts, Master};
+use iga_contact::dofs::{Body, DofMap};
 use iga_contact::error::{Error, Result};
+use iga_contact::geometry::rectangle;
 use iga_contact::material::Material;
 use iga_contact::nurbs::Side;
 use iga_contact::post;
 use iga_contact::problem::Problem;
+use iga_contact::scene::Scene;
+use iga_contact::space::Space;
 
 /// Points per boundary element where u_y(top) and u_x(x = 1) are sampled,
 /// besides the control points of those sides.
@@ -75,12 +80,117 @@ pub struct PatchErrors {
     pub force: f64,
 }
 
+/// How the lower block of [`blocks_problem`] is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LowerBlock {
+    /// One patch of 4 × 2 elements.
+    One,
+    /// Two patches side by side (split at x = 0.5), 2 × 2 elements each:
+    /// a matching interface, its control points shared.
+    Matching,
+    /// Two patches of 2 × 3 and 2 × 4 elements: 3 against 4 elements up
+    /// the shared side, tied by Nitsche's method.
+    NonMatching,
+}
+
+/// The elements of the lower block's patches, left to right.
+pub fn lower_elements(lower: LowerBlock) -> Vec<[usize; 2]> {
+    match lower {
+        LowerBlock::One => vec![[4, 2]],
+        LowerBlock::Matching => vec![[2, 2], [2, 2]],
+        LowerBlock::NonMatching => vec![[2, 3], [2, 4]],
+    }
+}
+
+/// The Taylor test of `scene` (`data/scenes/taylor.toml`: its materials,
+/// pressure, upper block and Nitsche parameters) with the lower block made
+/// as `lower` says. The lower block's top is the slave boundary (one
+/// contact of one piece per patch) and the upper block's bottom its
+/// master, since a master is one patch side: the contact side of the
+/// lower block spans its patches. Bodies `lower` (one or two patches),
+/// then `upper`.
+pub fn blocks_problem(scene: &Scene, lower: LowerBlock) -> Result<Problem> {
+    let spec = |name: &str| scene.bodies.iter().find(|b| b.name == name);
+    let (Some(lo), Some(up)) = (spec("lower"), spec("upper")) else {
+        return Err(Error::invalid(
+            "taylor scene",
+            "bodies",
+            "expected the bodies `lower, upper` of data/scenes/taylor.toml",
+        ));
+    };
+    let pressure = scene
+        .loads
+        .iter()
+        .find_map(|l| match l {
+            Load::Pressure { pressure, .. } => Some(*pressure),
+            _ => None,
+        })
+        .ok_or_else(|| Error::invalid("taylor scene", "loads", "expected a pressure"))?;
+    let nitsche = scene
+        .contacts
+        .first()
+        .map(|c| c.nitsche)
+        .ok_or_else(|| Error::invalid("taylor scene", "contacts", "expected one contact"))?;
+    let body = |name: &str, x: [f64; 2], y: [f64; 2], el: [usize; 2], m: Material| {
+        Ok(Body {
+            name: name.into(),
+            space: Space::new(rectangle(x[0], y[0], x[1], y[1])?.k_refined(2, el)?, None)?,
+            material: m,
+            formulation: lo.formulation,
+        })
+    };
+    let elements = lower_elements(lower);
+    let width = 1.0 / elements.len() as f64;
+    let mut bodies = elements
+        .iter()
+        .enumerate()
+        .map(|(k, &el)| {
+            let x = [k as f64 * width, (k + 1) as f64 * width];
+            body("lower", x, [0.0, 0.5], el, lo.material)
+        })
+        .collect::<Result<Vec<Body>>>()?;
+    let n_lower = bodies.len();
+    bodies.push(body("upper", [0.0, 1.0], [0.5, 1.0], [3, 2], up.material)?);
+    let upper = n_lower;
+    let mut dofs = DofMap::builder(&bodies);
+    if n_lower > 1 {
+        dofs.join("lower", &(0..n_lower).collect::<Vec<_>>())?;
+    }
+    for p in 0..n_lower {
+        dofs.fix_side(p, Side::EtaMin, 1, 0.0)?;
+    }
+    dofs.fix_side(0, Side::XiMin, 0, 0.0)?;
+    dofs.fix_side(upper, Side::XiMin, 0, 0.0)?;
+    let map = dofs.build();
+    let loads = [Load::Pressure {
+        body: upper,
+        side: Side::EtaMax,
+        pressure,
+    }];
+    let pairs = (0..n_lower)
+        .map(|p| ContactPair {
+            slave: p,
+            slave_side: Side::EtaMax,
+            master: Master::Body {
+                body: upper,
+                side: Side::EtaMin,
+            },
+            nitsche,
+        })
+        .collect();
+    Problem::new(bodies, map, &loads, pairs)?.with_contacts(Contacts::of_sizes(&[n_lower])?)
+}
+
 /// Compares `full` (all DOFs of the Taylor scene: bodies `lower`, `upper`)
 /// with the exact state. A NaN anywhere makes the errors NaN, so that a
 /// broken solution cannot look exact.
 pub fn patch_errors(problem: &Problem, full: &[f64], exact: &Exact) -> Result<PatchErrors> {
-    let names: Vec<&str> = problem.bodies.iter().map(|b| b.name.as_str()).collect();
-    let [lower, upper] = [0, 1];
+    let mut names: Vec<&str> = problem.bodies.iter().map(|b| b.name.as_str()).collect();
+    // the lower block may be several patches, left to right: its right
+    // face is the last one's
+    names.dedup();
+    let upper = problem.bodies.len().saturating_sub(1);
+    let lower = upper.saturating_sub(1);
     if names != ["lower", "upper"] || full.len() != problem.map.n_total() {
         return Err(Error::invalid(
             "taylor problem",
@@ -130,9 +240,16 @@ pub fn patch_errors(problem: &Problem, full: &[f64], exact: &Exact) -> Result<Pa
             .map(|u| u[0]),
         ux_exact,
     );
+    // the contact force on the slave: it balances the load on the upper
+    // block, and equals it on the lower one
     let f = post::contact_resultant(problem, full);
     let load = post::applied_resultant(problem)?;
-    e.force = (f[0] + load[0]).hypot(f[1] + load[1]) / load[0].hypot(load[1]);
+    let sign = if problem.pairs.first().map(|p| p.slave) == Some(upper) {
+        1.0
+    } else {
+        -1.0
+    };
+    e.force = (f[0] + sign * load[0]).hypot(f[1] + sign * load[1]) / load[0].hypot(load[1]);
     Ok(e)
 }
 
