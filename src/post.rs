@@ -8,7 +8,12 @@
 //! pressure is built on the Nitsche bracket P = σ_n + γ g_n and the
 //! projection of Eq. (10): the pressure the master exerts is −\[P\]₋.
 
+pub mod ends;
 pub mod hertz;
+mod measures;
+
+pub use ends::{SideEndKind, SlaveEnd, ZoneBounds};
+pub use measures::ContactMeasures;
 
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
@@ -66,8 +71,8 @@ impl ProfileSample {
 pub struct PressureProfile {
     /// Sorted by pair, then by slave parameter.
     samples: Vec<ProfileSample>,
-    /// The end points of every pair's slave side.
-    side_ends: Vec<[[f64; 2]; 2]>,
+    /// Where the zones of every pair's slave side may end.
+    bounds: Vec<ZoneBounds>,
 }
 
 /// The contact points of `problem`'s pairs placed at `per_element` Gauss
@@ -115,13 +120,8 @@ impl PressureProfile {
     /// The profile at the given contact points of `problem` (for instance
     /// the solver's own), on each pair's slave side.
     pub fn from_points(problem: &Problem, points: &[ContactPoint], full: &[f64]) -> Self {
-        let side_ends = problem
-            .pairs
-            .iter()
-            .map(|p| {
-                let c = problem.bodies[p.slave].space.patch.side_curve(p.slave_side);
-                [c.point(c.knots.first()), c.point(c.knots.last())]
-            })
+        let bounds = (0..problem.pairs.len())
+            .map(|k| ZoneBounds::of_pair(problem, k))
             .collect();
         let mut samples: Vec<ProfileSample> = points
             .iter()
@@ -138,7 +138,7 @@ impl PressureProfile {
             })
             .collect();
         samples.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.t.total_cmp(&b.t)));
-        Self { samples, side_ends }
+        Self { samples, bounds }
     }
 
     /// The dense profile: [`PROFILE_SAMPLES_PER_ELEMENT`] points per slave
@@ -179,7 +179,7 @@ impl PressureProfile {
             .filter(|s| s.regular)
             .copied()
             .collect();
-        ContactMeasures::of(&regular, self.side_ends[pair])
+        ContactMeasures::of(&regular, &self.bounds[pair])
     }
 
     /// As [`PressureProfile::measures`], over the consecutive pairs
@@ -197,20 +197,22 @@ impl PressureProfile {
     /// floor gave 0.0470 for the same profile).
     pub fn measures_joined(&self, pairs: std::ops::Range<usize>) -> ContactMeasures {
         let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+        let ends_of = |k: usize| self.bounds[k].slave.map(|e| e.at);
         // distance of a point to the nearer end of piece k
         let near = |x: [f64; 2], k: usize| {
-            let [a, b] = self.side_ends[k];
+            let [a, b] = ends_of(k);
             dist(x, a).min(dist(x, b))
         };
         let mut samples: Vec<ProfileSample> = Vec::new();
-        let mut ends = [[0.0; 2]; 2];
+        let mut joined = self.bounds[pairs.start].clone();
+        let mut first_sampled = true;
         for k in pairs.clone() {
-            let [a, b] = self.side_ends[k];
+            let [a, b] = self.bounds[k].slave;
             let reversed = if k == pairs.start {
                 // the first piece ends where the second one touches it
-                k + 1 < pairs.end && near(a, k + 1) < near(b, k + 1)
+                k + 1 < pairs.end && near(a.at, k + 1) < near(b.at, k + 1)
             } else {
-                dist(b, ends[1]) < dist(a, ends[1])
+                dist(b.at, joined.slave[1].at) < dist(a.at, joined.slave[1].at)
             };
             let mut piece: Vec<ProfileSample> =
                 self.pair(k).iter().filter(|s| s.regular).copied().collect();
@@ -221,12 +223,21 @@ impl PressureProfile {
                 (a, b)
             };
             if k == pairs.start {
-                ends[0] = start;
+                joined.slave[0] = start;
             }
-            ends[1] = end;
+            joined.slave[1] = end;
+            // the samples at each end of the boundary face the master of
+            // the first and the last piece that has any
+            if !piece.is_empty() {
+                if first_sampled {
+                    joined.master[0] = self.bounds[k].master[0].clone();
+                    first_sampled = false;
+                }
+                joined.master[1] = self.bounds[k].master[1].clone();
+            }
             samples.extend(piece);
         }
-        ContactMeasures::of(&samples, ends)
+        ContactMeasures::of(&samples, &joined)
     }
 
     /// The largest pressure of pair `pair` over its regular samples: the
@@ -237,109 +248,6 @@ impl PressureProfile {
             .filter(|s| s.regular)
             .map(ProfileSample::pressure)
             .fold(0.0, f64::max)
-    }
-}
-
-/// The peak pressure and the contact half-width of one contact pair.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ContactMeasures {
-    /// p₀: the largest sampled pressure −\[P\]₋ in the main contact zone.
-    pub p0: f64,
-    /// Where p₀ is attained (reference position on the slave).
-    pub peak_at: [f64; 2],
-    /// a: half the length of the main contact zone, measured along the
-    /// contact tangent at the peak — or its whole length when the zone
-    /// reaches an end of the slave side (a symmetric half model).
-    pub half_width: f64,
-    /// How many separate contact zones the profile has (1 for a single,
-    /// connected zone; more flags contact away from the main zone).
-    pub zones: usize,
-}
-
-impl ContactMeasures {
-    /// Measures a profile of one pair: `samples` in order along the slave
-    /// side, whose end points are `side_ends`.
-    ///
-    /// The contact zones are the runs of consecutive samples where the
-    /// bracket P is negative. The **main zone** is the one holding the
-    /// loaded sample of least initial gap: where the bodies first touch.
-    /// (A zone elsewhere is real in the discrete solution, but it is not the
-    /// contact the measures describe: for instance a spurious one where the
-    /// stress of a degenerate parametrisation is large; `zones` counts them.)
-    ///
-    /// p₀ is the largest pressure of the main zone. Its ends are the sign
-    /// changes of P, located by linear interpolation of the *signed* bracket
-    /// between neighbouring samples: the clipped pressure cannot be
-    /// interpolated, since it is identically 0 beyond the edge, but P is
-    /// smooth there. Positions are measured along the tangent t = n¹⊥ at the
-    /// peak (the common tangent of Hertz's theory). The half-width is half
-    /// the zone's extent along t; if the zone runs up to an end of the slave
-    /// side, that end is taken as the zone's centre — the model is a
-    /// symmetric half, cut through the contact zone, as the paper's Hertz
-    /// disk — and the half-width is the extent itself. With no loaded sample
-    /// every measure is 0.
-    pub fn of(samples: &[ProfileSample], side_ends: [[f64; 2]; 2]) -> Self {
-        let mut zones: Vec<std::ops::Range<usize>> = Vec::new();
-        for (k, s) in samples.iter().enumerate() {
-            if s.bracket < 0.0 {
-                match zones.last_mut() {
-                    Some(z) if z.end == k => z.end = k + 1,
-                    _ => zones.push(k..k + 1),
-                }
-            }
-        }
-        let first_touch = samples
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| s.bracket < 0.0)
-            .min_by(|a, b| a.1.g0.total_cmp(&b.1.g0))
-            .map(|(k, _)| k);
-        let Some(main) = first_touch.and_then(|k| zones.iter().find(|z| z.contains(&k))) else {
-            return Self {
-                p0: 0.0,
-                peak_at: [0.0; 2],
-                half_width: 0.0,
-                zones: 0,
-            };
-        };
-        let peak = samples[main.clone()]
-            .iter()
-            .max_by(|a, b| a.pressure().total_cmp(&b.pressure()))
-            .expect("a zone is not empty");
-        let tangent = [-peak.normal[1], peak.normal[0]];
-        let along = |x: [f64; 2]| (x[0] - peak.x[0]) * tangent[0] + (x[1] - peak.x[1]) * tangent[1];
-        // the zone's end on each side: a sign change, or the end of the side
-        let edge = |inside: usize, outside: Option<usize>, side_end: [f64; 2]| match outside {
-            Some(o) => {
-                let (a, b) = (&samples[inside], &samples[o]);
-                let s = a.bracket / (a.bracket - b.bracket);
-                (
-                    along([
-                        a.x[0] + s * (b.x[0] - a.x[0]),
-                        a.x[1] + s * (b.x[1] - a.x[1]),
-                    ]),
-                    false,
-                )
-            }
-            None => (along(side_end), true),
-        };
-        let lo = edge(main.start, main.start.checked_sub(1), side_ends[0]);
-        let hi = edge(
-            main.end - 1,
-            Some(main.end).filter(|&e| e < samples.len()),
-            side_ends[1],
-        );
-        let half_width = match (lo, hi) {
-            // cut by a symmetry line at one end: that end is the centre
-            ((c, true), (e, false)) | ((e, false), (c, true)) => (e - c).abs(),
-            ((a, _), (b, _)) => 0.5 * (b - a).abs(),
-        };
-        Self {
-            p0: peak.pressure(),
-            peak_at: peak.x,
-            half_width,
-            zones: zones.len(),
-        }
     }
 }
 
@@ -507,76 +415,18 @@ pub fn first_touch_stability(points: &[ContactPoint], pairs: usize) -> Vec<Penal
 mod tests {
     use super::*;
 
-    fn sample(x: f64, bracket: f64) -> ProfileSample {
+    /// A sample at (x, 0) on a floor below, first touching at x = 0.
+    pub(crate) fn sample(x: f64, bracket: f64) -> ProfileSample {
         ProfileSample {
             pair: 0,
             t: x,
             x: [x, 0.0],
             normal: [0.0, -1.0],
-            g0: x * x, // first touch at x = 0
+            g0: x * x,
             bracket,
             weight: 1.0,
             regular: true,
         }
-    }
-
-    /// On a sampled Hertz ellipse P(x) = −p₀√(1 − x²/a²) continued by a
-    /// positive gap beyond a, the estimators find p₀ at the centre and a
-    /// to second order in the sample spacing.
-    #[test]
-    fn measures_of_a_sampled_hertz_profile() {
-        let (p0, a) = (2.0, 0.45);
-        for (n, tol) in [(40, 2e-3), (400, 2e-5)] {
-            let samples: Vec<_> = (0..n)
-                .map(|i| {
-                    let x = (i as f64 + 0.5) / n as f64;
-                    // smooth across the edge: −p₀(1 − x²/a²) has the same root
-                    sample(x, -p0 * (1.0 - x * x / (a * a)))
-                })
-                .collect();
-            let m = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
-            assert!((m.p0 - p0).abs() <= 1e-3 * p0, "{m:?}");
-            assert!((m.half_width - a).abs() <= tol, "n = {n}: {m:?}");
-        }
-        // a symmetric whole zone [−a, a] gives the same a as its half
-        let samples: Vec<_> = (0..800)
-            .map(|i| {
-                let x = -1.0 + (i as f64 + 0.5) / 400.0;
-                sample(x, -p0 * (1.0 - x * x / (a * a)))
-            })
-            .collect();
-        let m = ContactMeasures::of(&samples, [[-1.0, 0.0], [1.0, 0.0]]);
-        assert!((m.half_width - a).abs() <= 2e-5, "{m:?}");
-        assert!(m.peak_at[0].abs() <= 2e-3);
-        assert_eq!(m.zones, 1);
-    }
-
-    /// A spike of pressure far from the first touch (as the stress of a
-    /// degenerate parametrisation can make) is a zone of its own: counted,
-    /// but it changes neither p₀ nor a of the main zone.
-    #[test]
-    fn a_spurious_zone_is_counted_but_not_measured() {
-        let (p0, a) = (2.0, 0.45);
-        let mut samples: Vec<_> = (0..400)
-            .map(|i| {
-                let x = (i as f64 + 0.5) / 400.0;
-                sample(x, -p0 * (1.0 - x * x / (a * a)))
-            })
-            .collect();
-        let clean = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
-        samples[395].bracket = -100.0 * p0;
-        let spiked = ContactMeasures::of(&samples, [[0.0; 2], [1.0, 0.0]]);
-        assert_eq!(spiked.zones, 2);
-        assert_eq!((spiked.p0, spiked.half_width), (clean.p0, clean.half_width));
-    }
-
-    #[test]
-    fn no_contact_measures_zero() {
-        let samples: Vec<_> = (0..10).map(|i| sample(i as f64, 1.0)).collect();
-        let ends = [[0.0; 2], [1.0, 0.0]];
-        let m = ContactMeasures::of(&samples, ends);
-        assert_eq!((m.p0, m.half_width), (0.0, 0.0));
-        assert_eq!(ContactMeasures::of(&[], ends).p0, 0.0);
     }
 
     #[test]

@@ -189,7 +189,8 @@ pub fn factor_entries(dofs: f64, degree: usize) -> f64 {
 pub struct Estimate {
     pub bodies: Vec<BodySize>,
     pub pairs: Vec<PairSize>,
-    /// Degrees of freedom before supports are applied.
+    /// Free degrees of freedom: those the solve numbers (shared interface
+    /// points once, supported components left out).
     pub dofs: f64,
     /// Stiffness non-zeros (upper bound).
     pub nonzeros: f64,
@@ -208,10 +209,11 @@ pub struct Estimate {
 pub const PHASES: [&str; 3] = ["sparsity pattern", "factorisation", "output"];
 
 impl Estimate {
-    /// Computes the phases from the sizes.
+    /// Computes the phases from the sizes; `dofs` are the free DOFs.
     pub fn new(
         bodies: Vec<BodySize>,
         pairs: Vec<PairSize>,
+        dofs: f64,
         vtu_subdivisions: Option<usize>,
         factoring: Factoring,
     ) -> Self {
@@ -220,7 +222,6 @@ impl Estimate {
             .map(|p| p.points * p.dofs_per_point * p.dofs_per_point)
             .sum();
         let nnz: f64 = bodies.iter().map(BodySize::nonzeros).sum();
-        let dofs: f64 = bodies.iter().map(|b| 2.0 * b.control_points()).sum();
         let vtu_points = vtu_subdivisions.map_or(0.0, |s| {
             let per = ((s + 1) * (s + 1)) as f64;
             bodies.iter().map(|b| b.n_elements() * per).sum()

@@ -1,6 +1,8 @@
 //! The resources a run needs, from the scene alone: sizes from the knot
 //! vectors, nothing of the size of the discretisation allocated.
 
+mod free_dofs;
+
 use super::patches::in_body;
 use super::validate::Valid;
 use super::{MasterSpec, RefineSpec, Scene};
@@ -24,6 +26,9 @@ impl Valid<'_> {
         let per_body = (0..self.bodies.len())
             .map(|i| self.body_sizes(i))
             .collect::<Result<Vec<_>>>()?;
+        let exact: Vec<Vec<NurbsPatch>> = (0..self.bodies.len())
+            .map(|i| self.exact_patches(i))
+            .collect::<Result<_>>()?;
         // the first patch of every body among all patches' sizes
         let first: Vec<usize> = per_body
             .iter()
@@ -35,6 +40,7 @@ impl Valid<'_> {
             .collect();
         let sizes: Vec<BodySize> = per_body.into_iter().flatten().collect();
         let names = self.body_index();
+        let dofs = self.free_dofs(&exact, &sizes, &first)?;
         // one pair per piece of a slave boundary
         let mut pieces = Vec::new();
         for c in &self.contacts {
@@ -83,11 +89,20 @@ impl Valid<'_> {
         } else {
             Factoring::Cholesky
         };
-        Ok(Estimate::new(sizes, pairs, vtu, factoring))
+        Ok(Estimate::new(sizes, pairs, dofs, vtu, factoring))
     }
 }
 
 impl Scene {
+    /// The exact patches of body `i`, before refinement.
+    fn exact_patches(&self, i: usize) -> Result<Vec<NurbsPatch>> {
+        let b = &self.bodies[i];
+        match b.geometry.multipatch() {
+            None => Ok(vec![self.exact_patch(i)?]),
+            Some(mp) => Ok(mp.map_err(|e| in_body(e, i, &b.name, ""))?.patches),
+        }
+    }
+
     /// The sizes of body `i`'s discretisation (one per patch), from its
     /// knot vectors alone.
     fn body_sizes(&self, i: usize) -> Result<Vec<BodySize>> {
