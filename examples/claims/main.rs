@@ -129,46 +129,50 @@ fn penalty_claim() -> Result<Claim> {
     })
 }
 
-/// Claim 2: K̃₀ (17) is a good enough start for BFGS. Evidence: the paper's
-/// iteration from K̃₀, with and without the correction (18), on every run of
-/// the Hertz ladder, and on Taylor. A run supports the start when one of the
-/// two rules converges from it: where both fail, the start is to blame;
-/// where only one does, the rule is (claim 3 judges the rule).
+/// Claim 2: K̃₀ (17) is a good enough start for BFGS. Like for like: the
+/// paper's iteration (its correction rule, full steps, body space) from K̃₀
+/// and from the balanced secant start, nothing else changed, on every run of
+/// the Hertz ladder, and on Taylor. A run supports the start when the
+/// iteration converges from K̃₀, or fails from both starts (then the start
+/// is not what fails); it does not when only the secant start converges.
 fn start_claim() -> Result<Claim> {
     let f = facts("hertz")?;
     let converges = |solver: &str, p: usize, n: usize| -> Result<bool> {
         let key = format!("its_{solver}_p{p}_{n}");
         Ok(text(&f, "hertz", &key)? != "failed")
     };
-    let mut with = 0;
-    let mut without = 0;
-    let mut failed = Vec::new();
+    let mut tied = 0;
+    let mut secant = 0;
+    let mut limits = Vec::new();
     for (p, n) in LADDER {
-        let w = converges("bfgs_paper", p, n)?;
-        let o = converges("bfgs_paper_no_correction", p, n)?;
-        with += usize::from(w);
-        without += usize::from(o);
-        if !w && !o {
-            failed.push(format!("p = {p} on {n}²"));
+        let t = converges("bfgs_paper", p, n)?;
+        let s = converges("bfgs_paper_secant_start", p, n)?;
+        tied += usize::from(t);
+        secant += usize::from(s);
+        if !t && s {
+            limits.push(format!("p = {p} on {n}²"));
         }
     }
     let taylor = value(&facts("taylor")?, "taylor", "segment_iterations")?;
-    let converged = LADDER.len() - failed.len();
+    let supported = LADDER.len() - limits.len();
     let mut evidence = format!(
-        "from K̃₀ the paper's iteration converges on {converged} of {} Hertz runs with (18) or without it \
-         ({with} with, {without} without)",
+        "the paper's iteration converges on {tied} of {} Hertz runs from K̃₀ and on {secant} from the \
+         secant start",
         LADDER.len()
     );
-    if !failed.is_empty() {
-        evidence += &format!("; both fail on {}", failed.join(", "));
+    if !limits.is_empty() {
+        evidence += &format!(
+            "; only the secant start converges on {}",
+            limits.join(", ")
+        );
     }
-    evidence += &format!(", and on the Taylor test in {}", iterations(taylor));
+    evidence += &format!("; on the Taylor test K̃₀ converges in {}", iterations(taylor));
     Ok(Claim {
         key: "start",
         claim: "K̃₀ (17) is a good enough start for BFGS",
-        verdict: Verdict::of(converged, LADDER.len()),
+        verdict: Verdict::of(supported, LADDER.len()),
         evidence,
-        conditions: "Hertz p = 2, 3 on 8² to 64², θ = 0, (11), the paper's full steps, with and without (18)",
+        conditions: "Hertz p = 2, 3 on 8² to 64², θ = 0, (11), the paper's correction rule, full steps, body space",
         chapter: "[Hertz](hertz.md#the-solver-ladder)",
     })
 }
@@ -260,8 +264,14 @@ fn accuracy_claim() -> Result<Claim> {
     })
 }
 
+/// How much slower IGA must be for a timing to support claim 5: the solves
+/// take milliseconds on a shared machine, so a ratio near 1 is a tie, and
+/// a verdict must not turn on a ratio of 0.9 becoming 1.0.
+const CLEARLY_SLOWER: f64 = 1.25;
+
 /// Claim 5: IGA takes longer than FEM. Evidence: the 8×8 timings of the
-/// IGA-against-FEM chapter, the paper's iteration on one thread (timed).
+/// IGA-against-FEM chapter, the paper's iteration on one thread (timed); a
+/// case supports the claim when IGA is clearly slower.
 fn time_claim() -> Result<Claim> {
     let g = facts("iga_vs_fem")?;
     let mut slower = 0;
@@ -273,7 +283,7 @@ fn time_claim() -> Result<Claim> {
         let ratio = value(&g, "iga_vs_fem", &format!("{m}_paper_ratio"))?;
         let its = value(&g, "iga_vs_fem", &format!("{m}_paper_iterations"))?;
         cases += 1;
-        if ratio > 1.0 {
+        if ratio > CLEARLY_SLOWER {
             slower += 1;
         }
         parts.push(format!(
@@ -290,8 +300,9 @@ fn time_claim() -> Result<Claim> {
         claim: "IGA takes longer than FEM",
         verdict: Verdict::of(slower, cases),
         evidence: format!(
-            "{} (the paper: {}); milliseconds, against the paper's minutes; with the default solver on {} threads, not judged: {}",
+            "{} (the paper: {}); a case counts when IGA is slower by more than {}; milliseconds, against the paper's minutes; with the default solver on {} threads, not judged: {}",
             parts.join(", "),
+            Format::Times(2).render(CLEARLY_SLOWER),
             text(&g, "iga_vs_fem", "paper_ratio")?,
             text(&g, "iga_vs_fem", "threads")?,
             default.join(", ")
@@ -342,6 +353,7 @@ fn main() -> Result<()> {
         f.timed_text(&format!("{}_verdict", c.key), c.verdict.as_str())?;
     }
     f.count("claims", claims.len())?;
+    f.number("clearly_slower", CLEARLY_SLOWER, Format::Times(2))?;
     // ANCHOR_END: table
     chapter.finish()
 }

@@ -30,7 +30,7 @@ use iga_contact::report::table::{Cell, Column, Format, Table, Unit, CONTACT_ERRO
 use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::history::{Event, History};
-use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
+use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions, Start};
 use std::collections::BTreeMap;
 
 // ANCHOR: constants
@@ -51,12 +51,20 @@ const PROFILE_ELEMENTS: [usize; 2] = [8, 64];
 /// The solvers of the ladder, by the names `ladder.csv` uses: the
 /// library's default BFGS, the paper's iteration (the scene's own
 /// `[solver]` table: full steps), the paper's iteration never corrected
-/// (the like-for-like test of the correction), the default BFGS never
-/// corrected, and Newton.
-fn solvers(scene: &Scene) -> [(&'static str, SolverOptions); 5] {
+/// (the like-for-like test of the correction), the paper's iteration from
+/// the balanced secant start instead of the tied kernel (the like-for-like
+/// test of the start), the default BFGS never corrected, and Newton.
+fn solvers(scene: &Scene) -> [(&'static str, SolverOptions); 6] {
     [
         ("bfgs", SolverOptions::default()),
         ("bfgs_paper", scene.solver),
+        (
+            "bfgs_paper_secant_start",
+            SolverOptions {
+                start: Start::Secant,
+                ..scene.solver
+            },
+        ),
         (
             "bfgs_paper_no_correction",
             SolverOptions {
