@@ -131,6 +131,10 @@ pub struct Chapter {
     facts: Facts,
     /// Files that hold wall-clock times (see [`Chapter::timed`]).
     timed: Vec<String>,
+    /// A heavy chapter records the solver's fingerprint with its facts
+    /// ([`crate::canary`]), so that a quick test can tell when its data fall
+    /// behind the code.
+    cost: Cost,
 }
 
 /// The name of the file that lists a chapter's timed outputs.
@@ -185,7 +189,14 @@ impl Chapter {
             }
         }
         install_signal_cleanup()?;
-        Self::at(dir)
+        let cost = PROGRAMS
+            .iter()
+            .find(|p| p.chapter == name)
+            .map_or(Cost::Quick, |p| p.cost);
+        Ok(Self {
+            cost,
+            ..Self::at(dir)?
+        })
     }
 
     /// A chapter written to `dir`.
@@ -194,6 +205,7 @@ impl Chapter {
             set: OutputSet::begin(dir.into())?,
             facts: Facts::new(),
             timed: Vec::new(),
+            cost: Cost::Quick,
         })
     }
 
@@ -235,8 +247,12 @@ impl Chapter {
     }
 
     /// Writes the facts and the list of timed outputs, and swaps the
-    /// complete set of files in.
+    /// complete set of files in; a heavy chapter's facts gain the solver's
+    /// fingerprint first.
     pub fn finish(mut self) -> Result<()> {
+        if self.cost == Cost::Heavy {
+            crate::canary::record(&mut self.facts)?;
+        }
         let facts = self.facts.to_text();
         self.text(facts::FILE, &facts)?;
         let manifest = Manifest {

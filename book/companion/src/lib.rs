@@ -12,6 +12,7 @@
 mod allocator;
 #[doc(hidden)]
 pub mod book;
+pub mod canary;
 pub mod chapter;
 pub mod facts;
 pub mod figures;
