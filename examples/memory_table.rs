@@ -5,7 +5,8 @@
 //! floor under its weight, run by the `iga-contact` binary of this build as
 //! a child process (with `--max-memory 1T`, so that none is refused); its
 //! peak resident memory (`VmHWM`, from `wait4`'s `ru_maxrss`) is compared
-//! with [`Scene::estimate`]. Meshes grow per degree until the estimate
+//! with [`Scene::estimate`] (the largest of three runs for the small
+//! cases, whose peaks vary from launch to launch). Meshes grow per degree until the estimate
 //! would pass [`LIMIT`], one run at a time.
 //!
 //! Output: `book/src/generated/memory_table/`. A heavy program (minutes,
@@ -36,6 +37,13 @@ const CASES: [(usize, &[usize]); 6] = [
     (10, &[8, 16, 32]),
     (2, &[8, 32, 128, 256, 512, 1024]),
 ];
+
+/// Cases estimated below this run [`REPEATS`] times and keep the largest
+/// peak: a run of tens of megabytes peaks differently from one launch to
+/// the next (measured here: 25 and 34 MB for the same case), by as much
+/// as the estimate's own error, while a run of gigabytes does not.
+const SMALL: f64 = 1.0e9;
+const REPEATS: usize = 3;
 
 fn main() -> Result<()> {
     let mut chapter = Chapter::from_args("memory_table")?;
@@ -70,11 +78,22 @@ fn main() -> Result<()> {
             }
             std::fs::write(work.join("memory.toml"), &text).expect("writable work folder");
             let args = ["run", "memory.toml", "--out", "out", "--max-memory", "1T"];
-            let o = launch(&work, &args, Launch::default());
-            if o.code != Some(0) {
-                eprintln!("memory_table: p = {p}, {m}²: {}", o.stderr.trim());
+            let repeats = if estimate.peak_bytes() < SMALL {
+                REPEATS
+            } else {
+                1
+            };
+            let outcomes: Vec<_> = (0..repeats)
+                .map(|_| launch(&work, &args, Launch::default()))
+                .collect();
+            if let Some(bad) = outcomes.iter().find(|o| o.code != Some(0)) {
+                eprintln!("memory_table: p = {p}, {m}²: {}", bad.stderr.trim());
                 continue;
             }
+            let o = outcomes
+                .into_iter()
+                .max_by(|a, b| a.peak_bytes.total_cmp(&b.peak_bytes))
+                .expect("at least one run");
             let ratio = estimate.peak_bytes() / o.peak_bytes;
             eprintln!(
                 "memory_table: p = {p}, {m}²: estimate {}, peak {}, ratio {ratio:.2}",

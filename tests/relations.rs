@@ -90,11 +90,6 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "introduction.md",
-        "Every name of the library that a chapter mentions links",
-        "a property of the book's links, enforced by the preprocessor",
-    ),
-    (
-        "introduction.md",
         "Every problem is planar",
         "a convention of the book",
     ),

@@ -161,12 +161,12 @@ fn start_claim() -> Result<Claim> {
         LADDER.len()
     );
     if !limits.is_empty() {
-        evidence += &format!(
-            "; only the secant start converges on {}",
-            limits.join(", ")
-        );
+        evidence += &format!("; only the secant start converges on {}", limits.join(", "));
     }
-    evidence += &format!("; on the Taylor test K̃₀ converges in {}", iterations(taylor));
+    evidence += &format!(
+        "; on the Taylor test K̃₀ converges in {}",
+        iterations(taylor)
+    );
     Ok(Claim {
         key: "start",
         claim: "K̃₀ (17) is a good enough start for BFGS",
