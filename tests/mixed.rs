@@ -10,7 +10,7 @@ use companion::hertz as setup;
 use companion::lame;
 
 use iga_contact::assembly::{self, ElementStress};
-use iga_contact::contact::{Penalty, Theta};
+use iga_contact::contact::{PenaltyKind, Theta};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry::rectangle;
 use iga_contact::linsolve::{Factoriser, Method, Pattern};
@@ -217,7 +217,7 @@ fn hertz_run(
     s.bodies[0].material.poisson = nu;
     s.bodies[0].formulation = f;
     for ni in s.nitsche_mut() {
-        ni.penalty = Penalty::Sharp;
+        ni.penalty = PenaltyKind::Sharp;
         ni.penalty_factor = 2.0;
     }
     let exact = setup::analytic(&s).unwrap();
@@ -328,13 +328,17 @@ fn hertz_at_nu_0_4999_and_on_64_meets_issue_20() {
 /// alone made it grow like κ.)
 #[test]
 fn the_mixed_sharp_penalty_does_not_grow_with_kappa() {
-    let smallest = |nu: f64, penalty: Penalty| {
+    let smallest = |nu: f64, penalty: PenaltyKind| {
         let mut s = common::hertz_scene(2, 32, Theta::Incomplete);
         s.bodies[0].material.poisson = nu;
         s.bodies[0].formulation = Formulation::Mixed;
         for ni in s.nitsche_mut() {
             ni.penalty = penalty;
-            ni.penalty_factor = if penalty == Penalty::Sharp { 2.0 } else { 1.0 };
+            ni.penalty_factor = if penalty == PenaltyKind::Sharp {
+                2.0
+            } else {
+                1.0
+            };
         }
         let prob = s.build().unwrap();
         prob.points
@@ -344,11 +348,11 @@ fn the_mixed_sharp_penalty_does_not_grow_with_kappa() {
             .fold(f64::MAX, f64::min)
     };
     let (g3, g5) = (
-        smallest(0.3, Penalty::Sharp),
-        smallest(0.49999, Penalty::Sharp),
+        smallest(0.3, PenaltyKind::Sharp),
+        smallest(0.49999, PenaltyKind::Sharp),
     );
     assert!(g5 / g3 < 1.5 && g3 / g5 < 1.5, "{g3:e} → {g5:e}");
-    let empirical = smallest(0.49999, Penalty::Empirical);
+    let empirical = smallest(0.49999, PenaltyKind::Empirical);
     assert!(
         g5 / empirical < 10.0 && empirical / g5 < 10.0,
         "{g5:e} vs {empirical:e}"

@@ -513,7 +513,7 @@ fn a_zone_cut_at_the_end_of_a_one_patch_piece_is_warned_and_the_advice_clears_it
             .with_nitsche(|x| {
                 // the sharp penalty keeps every element above its bound, so
                 // that no penalty warning stands in for this one
-                x.penalty = iga_contact::contact::Penalty::Sharp;
+                x.penalty = iga_contact::contact::PenaltyKind::Sharp;
                 x.penalty_factor = 2.0;
             });
         scene.contacts[0].slave_boundary = Some(boundary.into());
@@ -763,7 +763,7 @@ fn a_zone_pressed_up_to_a_singular_element_is_warned_with_the_sharp_penalty_too(
             .refined("disk", RefineSpec::iga(2, [n, n]))
             .unwrap()
             .with_nitsche(|x| {
-                x.penalty = iga_contact::contact::Penalty::Sharp;
+                x.penalty = iga_contact::contact::PenaltyKind::Sharp;
                 x.penalty_factor = 2.0;
             });
         for l in &mut scene.loads {

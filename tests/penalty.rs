@@ -4,7 +4,7 @@
 //! `iterations.csv`: an event), and one above it does not.
 
 use iga_contact::contact::penalty::stability_bound;
-use iga_contact::contact::{Penalty, Theta};
+use iga_contact::contact::{PenaltyKind, Theta};
 use iga_contact::post::penalty_stability;
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, Warning};
@@ -156,7 +156,7 @@ fn check_warns_where_the_bodies_first_touch() {
 /// counts agree with the points' own γ and C_T.
 #[test]
 fn the_warning_follows_the_bound() {
-    let scene = |theta: Theta, penalty: Penalty, factor: f64| {
+    let scene = |theta: Theta, penalty: PenaltyKind, factor: f64| {
         let mut s = companion::shipped("hertz.toml")
             .unwrap()
             .refined("disk", RefineSpec::iga(2, [8, 8]))
@@ -171,10 +171,10 @@ fn the_warning_follows_the_bound() {
         s
     };
     let out = workdir("library");
-    let report = scene(Theta::Symmetric, Penalty::Empirical, 1.0)
+    let report = scene(Theta::Symmetric, PenaltyKind::Empirical, 1.0)
         .run(&out)
         .unwrap();
-    let s = scene(Theta::Symmetric, Penalty::Empirical, 1.0);
+    let s = scene(Theta::Symmetric, PenaltyKind::Empirical, 1.0);
     let problem = s.build().unwrap();
     let full = solve(&problem, &s.solver).unwrap().full;
     let stability = penalty_stability(&problem, &full)[0];
@@ -223,20 +223,20 @@ fn the_warning_follows_the_bound() {
 
     // a little above the factor named: silent; a little below: warned
     for (factor, warns) in [(1.2 * needed, false), (0.8 * needed, true)] {
-        let r = scene(Theta::Symmetric, Penalty::Empirical, factor)
+        let r = scene(Theta::Symmetric, PenaltyKind::Empirical, factor)
             .run(&out)
             .unwrap();
         assert_eq!(below_bound(&r.warnings), warns, "factor {factor}");
     }
     // the sharp penalty sits on the bound with safety 1, below it with less
     for (safety, warns) in [(1.0, false), (2.0, false), (0.5, true)] {
-        let r = scene(Theta::Symmetric, Penalty::Sharp, safety)
+        let r = scene(Theta::Symmetric, PenaltyKind::Sharp, safety)
             .run(&out)
             .unwrap();
         assert_eq!(below_bound(&r.warnings), warns, "safety {safety}");
     }
     // θ = −1 has no bound: never warned, however small the penalty
-    let r = scene(Theta::Skew, Penalty::Empirical, 0.05)
+    let r = scene(Theta::Skew, PenaltyKind::Empirical, 0.05)
         .run(&out)
         .unwrap();
     assert!(!below_bound(&r.warnings));
@@ -264,7 +264,7 @@ fn tied_kernel_is_positive_definite(mesh: [usize; 2], block: bool, safety: f64) 
     };
     let s = base.with_nitsche(|n| {
         n.theta = Theta::Symmetric;
-        n.penalty = Penalty::Sharp;
+        n.penalty = PenaltyKind::Sharp;
         n.penalty_factor = safety;
     });
     let p = s.build().unwrap();

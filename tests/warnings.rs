@@ -93,7 +93,7 @@ fn follow(mut scene: Scene, r: PenaltyRemedy) -> Scene {
         match r {
             PenaltyRemedy::Factor(f) => n.penalty_factor = f,
             PenaltyRemedy::Sharp(f) => {
-                n.penalty = iga_contact::contact::Penalty::Sharp;
+                n.penalty = iga_contact::contact::PenaltyKind::Sharp;
                 n.penalty_factor = f;
             }
             PenaltyRemedy::SlaveModulus => n.modulus = iga_contact::contact::Modulus::Slave,

@@ -14,7 +14,7 @@ use companion::{hertz, lame};
 use companion::chapter::Chapter;
 use companion::Facts;
 use iga_contact::assembly::ElementStress;
-use iga_contact::contact::Penalty;
+use iga_contact::contact::PenaltyKind;
 use iga_contact::error::Result;
 use iga_contact::material::Formulation;
 use iga_contact::nurbs::Side;
@@ -42,7 +42,7 @@ fn scene(p: usize, nu: f64, f: Formulation) -> Result<Scene> {
     disk.material.poisson = nu;
     disk.formulation = f;
     for n in s.nitsche_mut() {
-        n.penalty = Penalty::Sharp;
+        n.penalty = PenaltyKind::Sharp;
         n.penalty_factor = SAFETY;
     }
     Ok(s)

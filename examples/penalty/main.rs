@@ -12,7 +12,7 @@ use companion::chapter::Chapter;
 use companion::penalty::{hertz, measure};
 use companion::Facts;
 use iga_contact::contact::penalty::stability_bound;
-use iga_contact::contact::{ContactPoint, Penalty, Theta};
+use iga_contact::contact::{ContactPoint, PenaltyKind, Theta};
 use iga_contact::error::Result;
 use iga_contact::post::{penalty_stability, relative};
 use iga_contact::problem::Problem;
@@ -405,9 +405,9 @@ fn compare_sharp_penalty() -> Result<SharpRuns> {
         Column::plain("inactive_below", "inactive below"),
     ]);
     let choices = [
-        ("(11)", Penalty::Empirical, 1.0),
-        ("sharp ×1", Penalty::Sharp, 1.0),
-        ("sharp ×2", Penalty::Sharp, 2.0),
+        ("(11)", PenaltyKind::Empirical, 1.0),
+        ("sharp ×1", PenaltyKind::Sharp, 1.0),
+        ("sharp ×2", PenaltyKind::Sharp, 2.0),
     ];
     let mut theta_spread = [[0.0f64; 3]; 2];
     let mut theta1_empirical = [(0usize, 0usize); 2];

@@ -12,7 +12,7 @@ use companion::hertz as setup;
 use companion::chapter::Chapter;
 use companion::Facts;
 use iga_contact::assembly::{strain_stress, Load};
-use iga_contact::contact::{Integration, Penalty, Theta};
+use iga_contact::contact::{Integration, PenaltyKind, Theta};
 use iga_contact::error::{Error, ErrorKind, Result};
 use iga_contact::post::{relative, PressureProfile};
 use iga_contact::problem::Problem;
@@ -59,7 +59,7 @@ fn taylor() -> Result<Scene> {
 }
 
 /// Every Nitsche parameter group of a scene, set by `f`.
-fn with(mut scene: Scene, f: impl Fn(&mut iga_contact::contact::Nitsche)) -> Scene {
+fn with(mut scene: Scene, f: impl Fn(&mut iga_contact::scene::NitscheSpec)) -> Scene {
     scene.nitsche_mut().for_each(f);
     scene
 }
@@ -114,7 +114,7 @@ fn cases(reference_8x8: f64, reference_fine: f64) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     for theta in Theta::ALL {
         for f in factors() {
-            let set = |n: &mut iga_contact::contact::Nitsche| {
+            let set = |n: &mut iga_contact::scene::NitscheSpec| {
                 n.theta = theta;
                 n.penalty_factor = f;
             };
@@ -155,7 +155,7 @@ fn cases(reference_8x8: f64, reference_fine: f64) -> Result<Vec<Case>> {
         s.body_mut("disk")?.material.poisson = nu;
         let p0 = setup::analytic(&s)?.p0;
         let s = with(s, |n| {
-            n.penalty = Penalty::Sharp;
+            n.penalty = PenaltyKind::Sharp;
             n.penalty_factor = SHARP_SAFETY;
         });
         out.push(case(

@@ -13,4 +13,7 @@ pub mod stability;
 
 pub use contacts::Contacts;
 pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
-pub use params::{Integration, Modulus, Nitsche, Penalty, Sides, Theta};
+pub use params::{
+    Integration, Modulus, Nitsche, Penalty, PenaltyFactor, PenaltyFactorError, PenaltyKind, Sides,
+    Theta, MAX_PENALTY_FACTOR, MIN_PENALTY_FACTOR,
+};

@@ -95,12 +95,13 @@ fn validate(pair: &ContactPair, ip: usize, bodies: &[Body]) -> Result<()> {
             ));
         }
     }
-    pair.nitsche.validate(&f("nitsche"))?;
+    pair.nitsche.check_gauss_points(&f("nitsche"))?;
     Ok(())
 }
 
 /// Builds every contact quadrature point of every pair, after checking
-/// the pairs (body indices, [`Nitsche::validate`]).
+/// the pairs (body indices, [`Nitsche::check_gauss_points`]; the penalty
+/// is valid by its type).
 ///
 /// Points whose projection falls beyond the end of the master are left
 /// out: no master surface faces them. For the unbiased form, each body of
@@ -354,20 +355,22 @@ fn set_trace_constant(
         }
         Some(sp) => mixed_trace_constant(slave, be, sp, &cps, points)?,
     };
-    if nitsche.penalty == Penalty::Sharp && !c.is_finite() {
-        return Err(Error::invalid(
+    let safety = match nitsche.penalty {
+        Penalty::Sharp { .. } if !c.is_finite() => return Err(Error::invalid(
             "nitsche.penalty",
             "sharp",
             format!(
                 "element {} has modes of no energy that carry normal stress (under-integrated?), so no sharp bound exists",
                 be.element
             ),
-        ));
-    }
+        )),
+        Penalty::Sharp { safety } => Some(safety.get()),
+        Penalty::Empirical { .. } => None,
+    };
     for cp in points {
         cp.trace_constant = c;
-        if nitsche.penalty == Penalty::Sharp {
-            cp.gamma = sharp_penalty(c, cp.theta, nitsche.penalty_factor);
+        if let Some(safety) = safety {
+            cp.gamma = sharp_penalty(c, cp.theta, safety);
         }
     }
     Ok(())
@@ -549,15 +552,20 @@ fn make_point(
         [-n2[0], -n2[1]]
     };
     let g0 = (pr.point[0] - x[0]) * normal[0] + (pr.point[1] - x[1]) * normal[1];
-    let gamma = empirical_penalty(
-        PenaltyInputs {
-            young,
-            degree,
-            h_slave: be.length,
-            h_master,
-        },
-        pair.nitsche.penalty_factor,
-    );
+    let gamma = match pair.nitsche.penalty {
+        Penalty::Empirical { factor } => empirical_penalty(
+            PenaltyInputs {
+                young,
+                degree,
+                h_slave: be.length,
+                h_master,
+            },
+            factor.get(),
+        ),
+        // the bound is the whole slave element's: set with the trace
+        // constant, by `set_trace_constant`
+        Penalty::Sharp { .. } => 0.0,
+    };
 
     // σ_n = mᵀ σ(u) with m = (n_x², n_y², 2 n_x n_y) in Voigt notation and
     // σ the stress of the slave's formulation; for the mixed one θ̄ reaches

@@ -1,6 +1,7 @@
-//! The Nitsche parameters of a contact pair, in one typed group with one
-//! default and one validation, used by scene files, contact pairs and the
-//! chapter programs alike.
+//! The Nitsche parameters of a contact pair as typed values: a scene's
+//! `nitsche` table is validated into them once
+//! ([`crate::scene::NitscheSpec`]), and contact pairs and the chapter
+//! programs use them as they are.
 
 use crate::error::{Error, Result};
 use serde::de::{self, Visitor};
@@ -94,19 +95,6 @@ pub enum Integration {
     Segment,
 }
 
-/// How the penalty γ of a pair is chosen.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Penalty {
-    /// The paper's empirical formula, Eq. (11).
-    #[default]
-    Empirical,
-    /// The stability bound of the θ-family from each slave element's
-    /// trace-inverse constant ([`super::penalty::sharp_penalty`]); the
-    /// penalty factor is then the safety factor over the bound.
-    Sharp,
-}
-
 /// Which sides of a pair between two elastic bodies carry the contact terms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -145,7 +133,19 @@ pub enum Modulus {
     Max,
 }
 
-/// The range of `penalty_factor`. γ is the factor times E/h, and the
+/// The rule that sets γ, as a scene's key `penalty` names it: a
+/// [`Penalty`] without its factor.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PenaltyKind {
+    /// The paper's empirical formula, Eq. (11).
+    #[default]
+    Empirical,
+    /// The stability bound of each slave element.
+    Sharp,
+}
+
+/// The range of a [`PenaltyFactor`]. γ is the factor times E/h, and the
 /// stiffness it is added to is of order E/h too: twelve decades apart, with
 /// the system's own conditioning on top, one of the two is lost in the
 /// other's 1e-16 round-off. The penalty studies' range (1e-12 to 1e6) lies
@@ -153,41 +153,137 @@ pub enum Modulus {
 pub const MIN_PENALTY_FACTOR: f64 = 1e-12;
 pub const MAX_PENALTY_FACTOR: f64 = 1e12;
 
+/// A factor that scales a penalty: a number in
+/// [`MIN_PENALTY_FACTOR`]`..=`[`MAX_PENALTY_FACTOR`], as only
+/// [`PenaltyFactor::new`] makes one, so that what holds one needs no check.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct PenaltyFactor(f64);
+
+impl PenaltyFactor {
+    /// The factor 1: the paper's penalty, or the bound itself.
+    pub const ONE: PenaltyFactor = PenaltyFactor(1.0);
+
+    /// `value` as a factor, if it lies in the range.
+    pub fn new(value: f64) -> std::result::Result<Self, PenaltyFactorError> {
+        if !(value.is_finite() && value > 0.0) {
+            Err(PenaltyFactorError::NotPositive(value))
+        } else if !(MIN_PENALTY_FACTOR..=MAX_PENALTY_FACTOR).contains(&value) {
+            Err(PenaltyFactorError::OutOfRange(value))
+        } else {
+            Ok(PenaltyFactor(value))
+        }
+    }
+
+    /// The number.
+    pub fn get(self) -> f64 {
+        self.0
+    }
+}
+
+/// Why a number is no [`PenaltyFactor`]: data, rendered once by `Display`
+/// into the reason of the input error that names the key
+/// ([`PenaltyFactorError::at`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PenaltyFactorError {
+    /// Zero, negative, infinite or NaN.
+    NotPositive(f64),
+    /// Positive and finite, but outside the range.
+    OutOfRange(f64),
+}
+
+impl PenaltyFactorError {
+    /// The input error of key `field` (`contact[0].nitsche.penalty_factor`).
+    pub fn at(self, field: impl Into<String>) -> Error {
+        let shown = match self {
+            PenaltyFactorError::NotPositive(v) => v.to_string(),
+            // as written in a scene: 1e300, not three hundred digits
+            PenaltyFactorError::OutOfRange(v) => format!("{v:e}"),
+        };
+        Error::invalid(field, shown, self.to_string())
+    }
+}
+
+impl fmt::Display for PenaltyFactorError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PenaltyFactorError::NotPositive(_) => f.write_str("must be positive and finite"),
+            PenaltyFactorError::OutOfRange(_) => write!(
+                f,
+                "must lie in {MIN_PENALTY_FACTOR:e}..={MAX_PENALTY_FACTOR:e}: beyond, the \
+                 penalty against the stiffness falls below or rises above the round-off of \
+                 double precision, so the contact terms vanish in the stiffness or swamp it \
+                 (and γ itself can overflow)"
+            ),
+        }
+    }
+}
+
+/// How the penalty γ of a pair is chosen, with the factor that scales it.
+/// A scene writes it as two keys, `penalty` (the [`PenaltyKind`]) and
+/// `penalty_factor` (the factor, whose meaning the kind sets).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Penalty {
+    /// The paper's empirical formula, Eq. (11), times `factor`
+    /// ([`super::penalty::empirical_penalty`]); 1 reproduces the paper.
+    Empirical { factor: PenaltyFactor },
+    /// The stability bound of the θ-family from each slave element's
+    /// trace-inverse constant, times the safety factor `safety`
+    /// ([`super::penalty::sharp_penalty`]).
+    Sharp { safety: PenaltyFactor },
+}
+
+impl Default for Penalty {
+    /// The paper's: Eq. (11) with factor 1.
+    fn default() -> Self {
+        Penalty::Empirical {
+            factor: PenaltyFactor::ONE,
+        }
+    }
+}
+
+impl Penalty {
+    /// The penalty of kind `kind` scaled by `factor`.
+    pub fn new(kind: PenaltyKind, factor: PenaltyFactor) -> Self {
+        match kind {
+            PenaltyKind::Empirical => Penalty::Empirical { factor },
+            PenaltyKind::Sharp => Penalty::Sharp { safety: factor },
+        }
+    }
+}
+
 /// Largest number of Gauss points per contact element or segment.
 pub const MAX_GAUSS_POINTS: usize = 30;
 
-/// The Nitsche parameters of one contact pair (scene key `nitsche`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+/// The Nitsche parameters of one contact pair, as a scene's `nitsche`
+/// table is validated into ([`crate::scene::NitscheSpec`]) and chapter
+/// programs build them.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Nitsche {
     /// θ of Eq. (9); the paper uses 0.
     pub theta: Theta,
-    /// How γ is chosen: the empirical Eq. (11) (the paper) or the sharp bound.
+    /// How γ is chosen, and its factor: the empirical Eq. (11) (the
+    /// paper) or the sharp bound.
     pub penalty: Penalty,
     /// Whose modulus enters (11) between two elastic bodies.
     pub modulus: Modulus,
     /// One side (the paper's) or both, between two elastic bodies.
     pub sides: Sides,
-    /// Multiplies the penalty; 1 reproduces the paper. For the sharp
-    /// penalty it is the safety factor over the stability bound.
-    pub penalty_factor: f64,
     pub integration: Integration,
     /// Gauss points per element or segment; `None`: p + 2.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub gauss_points: Option<usize>,
 }
 
 impl Default for Nitsche {
-    /// θ = 0 and penalty factor 1 (the paper's); the slave's modulus in
-    /// (11), the biased form, and segment integration (the library's: the
-    /// paper integrates contact at Gauss points, `integration = "gauss"`).
+    /// θ = 0 and the empirical penalty with factor 1 (the paper's); the
+    /// slave's modulus in (11), the biased form, and segment integration
+    /// (the library's: the paper integrates contact at Gauss points,
+    /// `integration = "gauss"`).
     fn default() -> Self {
         Self {
             theta: Theta::Incomplete,
-            penalty: Penalty::Empirical,
+            penalty: Penalty::default(),
             modulus: Modulus::Slave,
             sides: Sides::Biased,
-            penalty_factor: 1.0,
             integration: Integration::Segment,
             gauss_points: None,
         }
@@ -195,39 +291,18 @@ impl Default for Nitsche {
 }
 
 impl Nitsche {
-    /// Checks the parameters; `field` is the key path of the group
-    /// (e.g. `contact[0].nitsche`).
-    pub fn validate(&self, field: &str) -> Result<()> {
-        if !(self.penalty_factor.is_finite() && self.penalty_factor > 0.0) {
-            return Err(Error::invalid(
-                format!("{field}.penalty_factor"),
-                self.penalty_factor,
-                "must be positive and finite",
-            ));
+    /// Checks the one parameter its type leaves open, the number of Gauss
+    /// points (post-processing sets it to a sampling of its own);
+    /// `field` is the key path of the group (e.g. `contact[0].nitsche`).
+    pub fn check_gauss_points(&self, field: &str) -> Result<()> {
+        match self.gauss_points {
+            Some(n) if n == 0 || n > MAX_GAUSS_POINTS => Err(Error::invalid(
+                format!("{field}.gauss_points"),
+                n,
+                format!("must lie in 1..={MAX_GAUSS_POINTS}"),
+            )),
+            _ => Ok(()),
         }
-        if !(MIN_PENALTY_FACTOR..=MAX_PENALTY_FACTOR).contains(&self.penalty_factor) {
-            return Err(Error::invalid(
-                format!("{field}.penalty_factor"),
-                // as written in a scene: 1e300, not three hundred digits
-                format!("{:e}", self.penalty_factor),
-                format!(
-                    "must lie in {MIN_PENALTY_FACTOR:e}..={MAX_PENALTY_FACTOR:e}: beyond, the \
-                     penalty against the stiffness falls below or rises above the round-off \
-                     of double precision, so the contact terms vanish in the stiffness or \
-                     swamp it (and γ itself can overflow)"
-                ),
-            ));
-        }
-        if let Some(n) = self.gauss_points {
-            if n == 0 || n > MAX_GAUSS_POINTS {
-                return Err(Error::invalid(
-                    format!("{field}.gauss_points"),
-                    n,
-                    format!("must lie in 1..={MAX_GAUSS_POINTS}"),
-                ));
-            }
-        }
-        Ok(())
     }
 
     /// Gauss points per element or segment for slave degree `degree`.
@@ -242,7 +317,7 @@ mod tests {
 
     #[derive(Deserialize, Serialize)]
     struct Wrap {
-        nitsche: Nitsche,
+        theta: Theta,
     }
 
     #[test]
@@ -253,29 +328,110 @@ mod tests {
             ("-1", Theta::Skew),
             ("-1.0", Theta::Skew),
         ] {
-            let w: Wrap = toml::from_str(&format!("nitsche = {{ theta = {text} }}")).unwrap();
-            assert_eq!(w.nitsche.theta, theta);
-            assert_eq!(w.nitsche.penalty_factor, 1.0);
+            let w: Wrap = toml::from_str(&format!("theta = {text}")).unwrap();
+            assert_eq!(w.theta, theta);
             let back: Wrap = toml::from_str(&toml::to_string(&w).unwrap()).unwrap();
-            assert_eq!(back.nitsche, w.nitsche);
+            assert_eq!(back.theta, w.theta);
         }
         for bad in ["0.5", "2", "\"zero\""] {
-            assert!(toml::from_str::<Wrap>(&format!("nitsche = {{ theta = {bad} }}")).is_err());
+            assert!(toml::from_str::<Wrap>(&format!("theta = {bad}")).is_err());
         }
     }
 
+    /// The limits themselves are factors, the numbers just beyond them
+    /// and every non-positive or non-finite number are not, each with its
+    /// own reason.
     #[test]
-    fn validation_names_the_key() {
-        let n = Nitsche {
-            penalty_factor: -1.0,
-            ..Nitsche::default()
-        };
-        let e = n.validate("contact[0].nitsche").unwrap_err().to_string();
-        assert!(e.contains("contact[0].nitsche.penalty_factor"), "{e}");
-        let n = Nitsche {
-            gauss_points: Some(0),
-            ..Nitsche::default()
-        };
-        assert!(n.validate("x").is_err());
+    fn a_penalty_factor_lies_in_its_range() {
+        for ok in [MIN_PENALTY_FACTOR, 1e-3, 1.0, 2.0, MAX_PENALTY_FACTOR] {
+            assert_eq!(PenaltyFactor::new(ok).map(PenaltyFactor::get), Ok(ok));
+        }
+        let below = MIN_PENALTY_FACTOR * (1.0 - f64::EPSILON);
+        let above = MAX_PENALTY_FACTOR * (1.0 + f64::EPSILON);
+        for out in [below, above, 1e-300, 1e300] {
+            assert_eq!(
+                PenaltyFactor::new(out),
+                Err(PenaltyFactorError::OutOfRange(out))
+            );
+        }
+        for bad in [0.0, -0.0, -2.5, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(
+                PenaltyFactor::new(bad),
+                Err(PenaltyFactorError::NotPositive(bad))
+            );
+        }
+        assert!(matches!(
+            PenaltyFactor::new(f64::NAN),
+            Err(PenaltyFactorError::NotPositive(v)) if v.is_nan()
+        ));
+    }
+
+    /// The error line of a refused factor: the key, the value as a scene
+    /// writes it, and the reason.
+    #[test]
+    fn a_refused_factor_names_its_key() {
+        let field = "contact[0].nitsche.penalty_factor";
+        let e = |v: f64| PenaltyFactor::new(v).unwrap_err().at(field).to_string();
+        assert_eq!(
+            e(-2.5),
+            "invalid input: `contact[0].nitsche.penalty_factor` = -2.5: must be positive and \
+             finite"
+        );
+        assert_eq!(
+            e(f64::NAN),
+            "invalid input: `contact[0].nitsche.penalty_factor` = NaN: must be positive and \
+             finite"
+        );
+        assert_eq!(
+            e(1e300),
+            "invalid input: `contact[0].nitsche.penalty_factor` = 1e300: must lie in \
+             1e-12..=1e12: beyond, the penalty against the stiffness falls below or rises \
+             above the round-off of double precision, so the contact terms vanish in the \
+             stiffness or swamp it (and γ itself can overflow)"
+        );
+        assert!(e(1e-13).starts_with(
+            "invalid input: `contact[0].nitsche.penalty_factor` = 1e-13: must lie in"
+        ));
+    }
+
+    #[test]
+    fn the_kind_chooses_what_the_factor_means() {
+        let f = PenaltyFactor::new(2.0).unwrap();
+        assert_eq!(
+            Penalty::new(PenaltyKind::Empirical, f),
+            Penalty::Empirical { factor: f }
+        );
+        assert_eq!(
+            Penalty::new(PenaltyKind::Sharp, f),
+            Penalty::Sharp { safety: f }
+        );
+        assert_eq!(
+            Penalty::default(),
+            Penalty::new(PenaltyKind::default(), PenaltyFactor::ONE)
+        );
+    }
+
+    #[test]
+    fn gauss_points_name_the_key() {
+        for (n, ok) in [
+            (None, true),
+            (Some(1), true),
+            (Some(30), true),
+            (Some(0), false),
+            (Some(31), false),
+        ] {
+            let nit = Nitsche {
+                gauss_points: n,
+                ..Nitsche::default()
+            };
+            let r = nit.check_gauss_points("contact[2].nitsche");
+            assert_eq!(r.is_ok(), ok, "{n:?}");
+            if let Err(e) = r {
+                assert!(
+                    e.to_string().contains("`contact[2].nitsche.gauss_points`"),
+                    "{e}"
+                );
+            }
+        }
     }
 }

@@ -231,7 +231,7 @@ impl Valid<'_> {
                     slave,
                     slave_side,
                     master: master.clone(),
-                    nitsche: c.nitsche,
+                    nitsche: self.nitsche[i],
                 });
             }
         }

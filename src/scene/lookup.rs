@@ -2,8 +2,7 @@
 //! building share, and the edits a program makes to a scene before it
 //! builds it.
 
-use super::{BodySpec, RefineSpec, Scene};
-use crate::contact::Nitsche;
+use super::{BodySpec, NitscheSpec, RefineSpec, Scene};
 use crate::error::{Error, Result};
 use crate::nurbs::Side;
 use std::collections::HashMap;
@@ -24,8 +23,9 @@ impl Scene {
             })
     }
 
-    /// The Nitsche parameters of every contact pair, to change them before building.
-    pub fn nitsche_mut(&mut self) -> impl Iterator<Item = &mut Nitsche> {
+    /// The `nitsche` table of every contact pair, to change it before
+    /// building (validated, as the whole scene is, when it is built).
+    pub fn nitsche_mut(&mut self) -> impl Iterator<Item = &mut NitscheSpec> {
         self.contacts.iter_mut().map(|c| &mut c.nitsche)
     }
 
@@ -36,7 +36,7 @@ impl Scene {
     }
 
     /// The scene with `set` applied to the Nitsche parameters of every pair.
-    pub fn with_nitsche(mut self, set: impl FnMut(&mut Nitsche)) -> Self {
+    pub fn with_nitsche(mut self, set: impl FnMut(&mut NitscheSpec)) -> Self {
         self.nitsche_mut().for_each(set);
         self
     }

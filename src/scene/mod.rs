@@ -29,8 +29,8 @@
 //! ```
 //!
 //! One concern per file, in the order a scene passes through them:
-//! `schema` (the tables as types, with `geometry` and `refine` in files
-//! of their own); `parse` (text to [`Scene`]); `validate` with the
+//! `schema` (the tables as types, with `geometry`, `refine` and `nitsche`
+//! in files of their own); `parse` (text to [`Scene`]); `validate` with the
 //! value checks of `rules` and the name lookups of `lookup`; `patches`
 //! and `build` (scene to [`Problem`]); `estimate` and `check` (before a
 //! run); `run` and `summary` (solving and the outputs).
@@ -40,6 +40,7 @@ mod check;
 mod estimate;
 mod geometry;
 mod lookup;
+mod nitsche;
 mod overlap;
 mod parse;
 mod patches;
@@ -52,6 +53,7 @@ mod validate;
 
 pub use check::CheckReport;
 pub use geometry::{DiskLayout, GeometrySpec, NurbsSpec};
+pub use nitsche::NitscheSpec;
 pub use refine::RefineSpec;
 pub use schema::{
     files, BodySpec, Component, ContactSpec, LoadSpec, MasterSpec, OutputSpec, Scene, SegmentSpec,

@@ -3,14 +3,13 @@
 //! and here ([`MasterSpec`]); values are checked in `validate.rs`.
 
 use crate::assembly::Load;
-use crate::contact::Nitsche;
 use crate::material::{Formulation, Material};
 use crate::nurbs::Side;
 use crate::solver::SolverOptions;
 use serde::{Deserialize, Serialize};
 
 use super::parse::TableError;
-use super::{GeometrySpec, RefineSpec};
+use super::{GeometrySpec, NitscheSpec, RefineSpec};
 #[cfg(doc)]
 use crate::wellposed;
 
@@ -145,7 +144,7 @@ pub struct ContactSpec {
     pub master: MasterSpec,
     /// θ, the penalty factor and the integration rule of the pair.
     #[serde(default)]
-    pub nitsche: Nitsche,
+    pub nitsche: NitscheSpec,
 }
 
 /// The master of a contact pair: either `{ rigid_segment = { from, to } }`

@@ -5,6 +5,7 @@ use super::patches::multipatch_lagrange;
 use super::rules::{finite, finite_point, in_range};
 use super::{load_kind, MasterSpec, RefineSpec, Scene, MAX_VTU_SUBDIVISIONS};
 use crate::assembly::Load;
+use crate::contact::Nitsche;
 use crate::error::{Error, Result};
 use crate::material::{Formulation, Plane};
 use crate::wellposed;
@@ -12,15 +13,20 @@ use std::collections::HashMap;
 use std::ops::Deref;
 
 /// A scene that passed [`Scene::validate`], as only [`Scene::valid`] makes
-/// one: what estimating, building and checking work on, so that each
-/// public entry point validates once and nothing below it again.
-pub(super) struct Valid<'a>(&'a Scene);
+/// one, with what validation read into typed values: what estimating,
+/// building and checking work on, so that each public entry point
+/// validates once and nothing below it again.
+pub(super) struct Valid<'a> {
+    scene: &'a Scene,
+    /// The Nitsche parameters of each `[[contact]]`, in order.
+    pub(super) nitsche: Vec<Nitsche>,
+}
 
 impl Deref for Valid<'_> {
     type Target = Scene;
 
     fn deref(&self) -> &Scene {
-        self.0
+        self.scene
     }
 }
 
@@ -128,6 +134,7 @@ impl Scene {
                 Load::Pressure { pressure, .. } => finite(format!("{f}.pressure"), *pressure)?,
             }
         }
+        let mut nitsche = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
             let slave = self.resolve(&names, format!("{f}.slave"), &c.slave)?;
@@ -185,7 +192,7 @@ impl Scene {
                     }
                 }
             }
-            c.nitsche.validate(&format!("{f}.nitsche"))?;
+            nitsche.push(c.nitsche.validate(&format!("{f}.nitsche"))?);
             if let Some(n) = c.nitsche.gauss_points {
                 let mut p = self.bodies[slave].degree();
                 if let Some(m) = c.master.body().and_then(|m| names.get(m)) {
@@ -223,7 +230,10 @@ impl Scene {
                 }
             }
         }
-        Ok(Valid(self))
+        Ok(Valid {
+            scene: self,
+            nitsche,
+        })
     }
 
     /// Refuses fewer quadrature points than `need`, unless the scene allows

@@ -2,10 +2,10 @@
 //! and `penalty_contrast`, heavy): one solve measured on the dense pressure
 //! profile, and the Hertz disk with chosen Nitsche parameters.
 
-use iga_contact::contact::Nitsche;
 use iga_contact::error::Result;
 use iga_contact::post::PressureProfile;
 use iga_contact::problem::Problem;
+use iga_contact::scene::NitscheSpec;
 use iga_contact::scene::RefineSpec;
 use iga_contact::solver::{solve, Solution, SolverOptions};
 
@@ -38,7 +38,7 @@ pub fn measure(problem: &Problem, options: &SolverOptions) -> Result<Run> {
 /// The Hertz disk on `n`² elements, p = 2, with the Nitsche parameters
 /// `set` (the scene's own solver table is not used: every run names its
 /// solver).
-pub fn hertz(n: usize, set: impl FnMut(&mut Nitsche)) -> Result<Problem> {
+pub fn hertz(n: usize, set: impl FnMut(&mut NitscheSpec)) -> Result<Problem> {
     crate::shipped("hertz.toml")?
         .refined("disk", RefineSpec::iga(2, [n, n]))?
         .with_nitsche(set)

@@ -73,11 +73,11 @@ fn scaled(pair: &ContactPair, s: &PenaltyStability, scale: f64) -> PenaltyRemedy
     let low_ok = s.min_ratio().is_none_or(|m| m * scale >= 1.0);
     let high_ok = s.max_active_scale.is_none_or(|m| m * scale <= OVER_PENALTY);
     match pair.nitsche.penalty {
-        Penalty::Empirical if low_ok && high_ok => {
-            PenaltyRemedy::Factor(round2(pair.nitsche.penalty_factor * scale))
+        Penalty::Empirical { factor } if low_ok && high_ok => {
+            PenaltyRemedy::Factor(round2(factor.get() * scale))
         }
-        Penalty::Empirical => PenaltyRemedy::Sharp(PENALTY_TARGET),
-        Penalty::Sharp => PenaltyRemedy::Factor(PENALTY_TARGET),
+        Penalty::Empirical { .. } => PenaltyRemedy::Sharp(PENALTY_TARGET),
+        Penalty::Sharp { .. } => PenaltyRemedy::Factor(PENALTY_TARGET),
     }
 }
 
