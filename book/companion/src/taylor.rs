@@ -129,8 +129,9 @@ pub fn blocks_problem(scene: &Scene, lower: LowerBlock) -> Result<Problem> {
     let nitsche = scene
         .contacts
         .first()
-        .map(|c| c.nitsche)
-        .ok_or_else(|| Error::invalid("taylor scene", "contacts", "expected one contact"))?;
+        .ok_or_else(|| Error::invalid("taylor scene", "contacts", "expected one contact"))?
+        .nitsche
+        .validate("contact[0].nitsche")?;
     let body = |name: &str, x: [f64; 2], y: [f64; 2], el: [usize; 2], m: Material| {
         Ok(Body {
             name: name.into(),
