@@ -189,23 +189,22 @@ impl Chapter {
             }
         }
         install_signal_cleanup()?;
-        let cost = PROGRAMS
-            .iter()
-            .find(|p| p.chapter == name)
-            .map_or(Cost::Quick, |p| p.cost);
-        Ok(Self {
-            cost,
-            ..Self::at(dir)?
-        })
+        Self::at(dir)
     }
 
     /// A chapter written to `dir`.
     pub fn at(dir: impl Into<PathBuf>) -> Result<Self> {
+        let dir = dir.into();
+        // the book's folder of a heavy program, whoever writes it
+        let cost = PROGRAMS
+            .iter()
+            .find(|p| generated_root().join(p.chapter) == dir)
+            .map_or(Cost::Quick, |p| p.cost);
         Ok(Self {
-            set: OutputSet::begin(dir.into())?,
+            set: OutputSet::begin(dir)?,
             facts: Facts::new(),
             timed: Vec::new(),
-            cost: Cost::Quick,
+            cost,
         })
     }
 
