@@ -11,20 +11,10 @@ use iga_contact::space::Space;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+use common::affine::{affine, affine_at_control_points, B};
+
 const SUBDIVISIONS: usize = 4;
-
-/// u(X) = a + B X: NURBS reproduce affine fields exactly, so the sampled
-/// displacement must equal the field at every sampled point and the stress
-/// must be the same everywhere in a body.
-const A: [f64; 2] = [1e-3, -2e-3];
-const B: [[f64; 2]; 2] = [[1e-3, 2e-4], [-3e-4, 5e-4]];
-
-fn affine(x: [f64; 2]) -> [f64; 2] {
-    [
-        A[0] + B[0][0] * x[0] + B[0][1] * x[1],
-        A[1] + B[1][0] * x[0] + B[1][1] * x[1],
-    ]
-}
 
 fn target_dir(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -59,18 +49,6 @@ fn model() -> (Vec<Body>, DofMap) {
     ];
     let map = DofMap::builder(&bodies).build();
     (bodies, map)
-}
-
-fn affine_at_control_points(bodies: &[Body], map: &DofMap) -> Vec<f64> {
-    let mut u = vec![0.0; map.n_total()];
-    for (bi, b) in bodies.iter().enumerate() {
-        for (cp, &x) in b.space.patch.points.iter().enumerate() {
-            let v = affine(x);
-            u[map.global(bi, cp, 0)] = v[0];
-            u[map.global(bi, cp, 1)] = v[1];
-        }
-    }
-    u
 }
 
 /// Checks that every opening tag is closed in order: not a full XML parser,

@@ -15,37 +15,14 @@ use iga_contact::space::Space;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+use common::affine::{affine, affine_at_control_points, B};
+
 const BIN: &str = env!("CARGO_BIN_EXE_iga-contact");
 const SUBDIVISIONS: usize = 4;
 
-/// u(X) = a + B X: an isoparametric space reproduces it exactly wherever
-/// the map is invertible, so every sampled displacement equals the field at
-/// the drawn point and every sampled stress is D B, also next to the fold.
-const A: [f64; 2] = [1e-3, -2e-3];
-const B: [[f64; 2]; 2] = [[1e-3, 2e-4], [-3e-4, 5e-4]];
-
-fn affine(x: [f64; 2]) -> [f64; 2] {
-    [
-        A[0] + B[0][0] * x[0] + B[0][1] * x[1],
-        A[1] + B[1][0] * x[0] + B[1][1] * x[1],
-    ]
-}
-
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The displacement vector of [`affine`] at every control point.
-fn affine_at_control_points(bodies: &[Body], map: &DofMap) -> Vec<f64> {
-    let mut u = vec![0.0; map.n_total()];
-    for (bi, b) in bodies.iter().enumerate() {
-        for (a, p) in b.space.patch.points.iter().enumerate() {
-            let d = affine(*p);
-            u[map.global(bi, a, 0)] = d[0];
-            u[map.global(bi, a, 1)] = d[1];
-        }
-    }
-    u
 }
 
 /// Every sample of `mesh` (one body of `material`) carries the affine

@@ -2,6 +2,8 @@
 
 #![allow(dead_code)] // each test file uses a different subset
 
+pub mod affine;
+
 use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
