@@ -6,34 +6,18 @@ mod common;
 
 use common::{example, taylor, taylor_scene};
 use companion::taylor::{consistency, exact_full, patch_errors, Exact, PatchErrors};
-use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
 use iga_contact::solver::solve;
 
 const TOL: f64 = 1e-10;
 
-fn exact(p: &Problem) -> Exact {
-    let pressure = p
-        .loads
-        .iter()
-        .find_map(|l| match l {
-            Load::Pressure { pressure, .. } => Some(*pressure),
-            _ => None,
-        })
-        .unwrap();
-    Exact {
-        pressure,
-        material: p.bodies[0].material,
-    }
-}
-
 fn errors(integration: Integration, theta: Theta) -> PatchErrors {
     let scene = taylor_scene(integration, theta);
     let p = scene.build().unwrap();
     let s =
         solve(&p, &scene.solver).unwrap_or_else(|e| panic!("{integration:?}, θ = {theta}: {e}"));
-    patch_errors(&p, &s.full, &exact(&p)).unwrap()
+    patch_errors(&p, &s.full, &Exact::of_problem(&p).unwrap()).unwrap()
 }
 
 fn assert_exact(e: &PatchErrors, what: &str) {
@@ -61,7 +45,7 @@ fn bulk_points(p: &Problem) -> usize {
 #[test]
 fn the_exact_field_is_what_the_blocks_should_do() {
     let p = taylor(Integration::Segment, Theta::Incomplete);
-    let ex = exact(&p);
+    let ex = Exact::of_problem(&p).unwrap();
     assert_eq!(ex.displacement([1.0, 1.0]), [0.03, -0.1]);
     let e = patch_errors(&p, &exact_full(&p, &ex), &ex).unwrap();
     assert_eq!(e.gauss_points, bulk_points(&p));
@@ -72,7 +56,7 @@ fn the_exact_field_is_what_the_blocks_should_do() {
 #[test]
 fn the_error_measures_notice_a_wrong_field() {
     let p = taylor(Integration::Segment, Theta::Incomplete);
-    let ex = exact(&p);
+    let ex = Exact::of_problem(&p).unwrap();
     let mut full = exact_full(&p, &ex);
     // Nudge one interior control point of the upper block upwards.
     let patch = &p.bodies[1].space.patch;
@@ -94,7 +78,7 @@ fn segment_integration_is_consistent_and_gauss_is_not() {
     for (integration, consistent) in [(Integration::Segment, true), (Integration::Gauss, false)] {
         for theta in Theta::ALL {
             let p = taylor(integration, theta);
-            let rel = consistency(&p, &exact(&p));
+            let rel = consistency(&p, &Exact::of_problem(&p).unwrap());
             let what = format!("{integration:?} θ = {theta}: ‖R(u_exact)‖/‖R(0)‖ = {rel:.3e}");
             assert_eq!(consistent, rel <= 1e-12, "{what}");
             assert!(consistent || rel > 1e-4, "{what}");
@@ -191,7 +175,7 @@ fn the_unbiased_form_passes_the_patch_test() {
             });
             let p = scene.build().unwrap();
             let s = solve(&p, &scene.solver).unwrap();
-            let e = patch_errors(&p, &s.full, &exact(&p)).unwrap();
+            let e = patch_errors(&p, &s.full, &Exact::of_problem(&p).unwrap()).unwrap();
             assert_exact(&e, &format!("unbiased, {modulus:?}, θ = {theta}"));
         }
     }

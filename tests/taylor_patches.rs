@@ -8,7 +8,7 @@
 //! apart from its arcs.
 
 use companion::taylor::{blocks_problem, patch_errors, Exact, LowerBlock, PatchErrors};
-use iga_contact::assembly::{stiffness, tie_stiffness, Load};
+use iga_contact::assembly::{stiffness, tie_stiffness};
 use iga_contact::dofs::{Body, DofMap, MIN_TIE_FACTOR, TIE_FACTOR};
 use iga_contact::geometry::{disk_5, rectangle};
 use iga_contact::linsolve::{Factoriser, Method};
@@ -25,26 +25,11 @@ fn scene() -> Scene {
     companion::shipped("taylor.toml").unwrap()
 }
 
-fn exact(scene: &Scene) -> Exact {
-    let pressure = scene
-        .loads
-        .iter()
-        .find_map(|l| match l {
-            Load::Pressure { pressure, .. } => Some(*pressure),
-            _ => None,
-        })
-        .unwrap();
-    Exact {
-        pressure,
-        material: scene.bodies[0].material,
-    }
-}
-
 fn solved(lower: LowerBlock) -> (Problem, Solution, PatchErrors) {
     let scene = scene();
     let p = blocks_problem(&scene, lower).unwrap();
     let s = solve(&p, &scene.solver).unwrap_or_else(|e| panic!("{lower:?}: {e}"));
-    let e = patch_errors(&p, &s.full, &exact(&scene)).unwrap();
+    let e = patch_errors(&p, &s.full, &Exact::of_problem(&p).unwrap()).unwrap();
     (p, s, e)
 }
 

@@ -17,8 +17,7 @@ use companion::taylor::{
     SIDE_SAMPLES,
 };
 use companion::Facts;
-use iga_contact::assembly::Load;
-use iga_contact::contact::Integration;
+use iga_contact::contact::{Integration, Master};
 use iga_contact::error::Result;
 use iga_contact::problem::Problem;
 use iga_contact::report::drawing::{
@@ -26,9 +25,8 @@ use iga_contact::report::drawing::{
 };
 use iga_contact::report::history::history_table;
 use iga_contact::report::plot::{field_figure, geometry_figure, LineKind, Polyline, BLACK_INDEX};
-use iga_contact::report::table::{Column, Format, Table, Unit};
+use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::report::vtu::sample_bodies;
-use iga_contact::scene::Scene;
 use iga_contact::solver::{solve, Solution};
 
 // ANCHOR: paper
@@ -82,6 +80,52 @@ fn syy_map_max(case: &Case) -> f64 {
     })
 }
 
+/// The largest value of the σ_yy error map of `case` in each body's
+/// element row along the contact interface and in its other elements:
+/// `(body name, [near, far])`, what Fig. T3b shows of where the Gauss
+/// error sits.
+fn syy_map_rows(case: &Case) -> Result<Vec<(String, [f64; 2])>> {
+    let p = case.exact.pressure;
+    let problem = &case.problem;
+    let cells = field_cells(
+        problem,
+        &case.solution.full,
+        MAP_SUBCELLS,
+        Placement::Reference,
+        |q| syy_error_at(q, p),
+    )?;
+    // field_cells walks bodies, then elements, MAP_SUBCELLS² cells each
+    let mut cells = cells.chunks(MAP_SUBCELLS * MAP_SUBCELLS);
+    let mut rows = Vec::new();
+    for (b, body) in problem.bodies.iter().enumerate() {
+        let side = problem.pairs.iter().find_map(|pair| match pair.master {
+            _ if pair.slave == b => Some(pair.slave_side),
+            Master::Body { body, side } if body == b => Some(side),
+            _ => None,
+        });
+        let near: Vec<usize> = side.map_or_else(Vec::new, |side| {
+            body.space
+                .boundary(side)
+                .iter()
+                .map(|e| e.element)
+                .collect()
+        });
+        let mut max = [f64::NEG_INFINITY; 2];
+        for e in 0..body.space.elements.len() {
+            let row = usize::from(!near.contains(&e));
+            let worst = cells
+                .next()
+                .into_iter()
+                .flatten()
+                .map(|c| c.value)
+                .fold(f64::NEG_INFINITY, f64::max);
+            max[row] = max[row].max(worst);
+        }
+        rows.push((body.name.clone(), max));
+    }
+    Ok(rows)
+}
+
 /// Sub-cells per element direction of the field maps.
 const MAP_SUBCELLS: usize = 8;
 
@@ -101,7 +145,7 @@ fn solve_case(rule: Integration) -> Result<Case> {
     }
     let problem = scene.build()?;
     let solution = solve(&problem, &scene.solver)?;
-    let exact = exact(&scene);
+    let exact = Exact::of_problem(&problem)?;
     let errors = patch_errors(&problem, &solution.full, &exact)?;
     Ok(Case {
         rule,
@@ -113,21 +157,6 @@ fn solve_case(rule: Integration) -> Result<Case> {
     })
 }
 
-/// The exact state of the scene: its pressure and (common) material.
-fn exact(scene: &Scene) -> Exact {
-    let pressure = scene
-        .loads
-        .iter()
-        .find_map(|l| match l {
-            Load::Pressure { pressure, .. } => Some(*pressure),
-            _ => None,
-        })
-        .expect("the Taylor scene is loaded by a pressure");
-    Exact {
-        pressure,
-        material: scene.bodies[0].material,
-    }
-}
 // ANCHOR_END: solve
 
 /// The chapter "The Taylor contact patch test", section by section.
@@ -176,6 +205,12 @@ fn max_u(c: &Case) -> f64 {
 }
 
 // ANCHOR: tables
+/// An error column: every error of Tables T1, T2 and T7 is printed with
+/// two significant digits.
+fn sci(key: &'static str, label: &'static str, unit: Unit) -> Column {
+    Column::new(key, label, unit, Format::Sci(2))
+}
+
 /// "Results": Tables T1 (`summary`) and T2 (`errors`), one row per
 /// integration rule. summary.csv keeps exactly the columns other tools
 /// read.
@@ -183,12 +218,7 @@ fn write_results(chapter: &mut Chapter, cases: &[Case; 2]) -> Result<()> {
     let mut summary = Table::new(vec![
         Column::plain("integration", "integration"),
         Column::plain("iterations", "BFGS iterations"),
-        Column::new(
-            "max_rel_error_syy",
-            "max |σ_yy + p|/p",
-            Unit::None,
-            Format::Sci(2),
-        ),
+        sci("max_rel_error_syy", "max |σ_yy + p|/p", Unit::None),
         Column::new(
             "uy_top",
             "u_y on top, worst sample",
@@ -199,24 +229,9 @@ fn write_results(chapter: &mut Chapter, cases: &[Case; 2]) -> Result<()> {
     let mut errors = Table::new(vec![
         Column::plain("integration", "integration"),
         Column::plain("contact_points", "points"),
-        Column::new(
-            "max_rel_error_sxx",
-            "max |σ_xx|/p",
-            Unit::None,
-            Format::Sci(2),
-        ),
-        Column::new(
-            "max_rel_error_sxy",
-            "max |σ_xy|/p",
-            Unit::None,
-            Format::Sci(2),
-        ),
-        Column::new(
-            "max_displacement_error",
-            "max ‖u − u*‖",
-            Unit::Metre,
-            Format::Sci(2),
-        ),
+        sci("max_rel_error_sxx", "max |σ_xx|/p", Unit::None),
+        sci("max_rel_error_sxy", "max |σ_xy|/p", Unit::None),
+        sci("max_displacement_error", "max ‖u − u*‖", Unit::Metre),
         Column::new(
             "ux_right",
             "u_x at x = 1, worst",
@@ -270,28 +285,32 @@ fn paper_beside_ours(cases: &[Case; 2], map_max: [f64; 2]) -> Result<Table> {
         Column::plain("segment", "ours, segment"),
         Column::plain("gauss", "ours, Gauss points"),
     ]);
-    let [segment, gauss] = cases;
-    let percent = |v: f64| Format::Percent(2).render(v);
-    beside.push(vec![
-        "quasi-Newton iterations (the paper's Table 1)".into(),
-        PAPER_ITERATIONS.into(),
-        segment.solution.history.len().into(),
-        gauss.solution.history.len().into(),
-    ])?;
-    beside.push(vec![
-        "largest value of the σ_yy error map, |σ_yy + p|/p (the paper's Fig. 3)".into(),
-        percent(PAPER_SYY_ERROR).into(),
-        percent(map_max[0]).into(),
-        percent(map_max[1]).into(),
-    ])?;
-    // The paper's column is the largest displacement of its iteration
-    // table, so ours is the same quantity of our last iteration.
-    beside.push(vec![
-        "max u, m (the paper's Table 1, last row)".into(),
-        PAPER_TABLE_1[PAPER_TABLE_1.len() - 1].3.into(),
-        Format::Fixed(5).render(max_u(segment)).into(),
-        Format::Fixed(5).render(max_u(gauss)).into(),
-    ])?;
+    let percent = |v: f64| Cell::from(Format::Percent(2).render(v));
+    let fixed = |v: f64| Cell::from(Format::Fixed(5).render(v));
+    // One row per quantity: its label, the paper's value, and ours for
+    // each case (segment, Gauss). The error row is the largest value of
+    // the map, as the paper's; the displacement row the largest
+    // displacement of the last iteration, as the paper's Table 1 column.
+    let rows: [(&str, Cell, [Cell; 2]); 3] = [
+        (
+            "quasi-Newton iterations (the paper's Table 1)",
+            PAPER_ITERATIONS.into(),
+            cases.each_ref().map(|c| c.solution.history.len().into()),
+        ),
+        (
+            "largest value of the σ_yy error map, |σ_yy + p|/p (the paper's Fig. 3)",
+            percent(PAPER_SYY_ERROR),
+            map_max.map(percent),
+        ),
+        (
+            "max u, m (the paper's Table 1, last row)",
+            PAPER_TABLE_1[PAPER_TABLE_1.len() - 1].3.into(),
+            cases.each_ref().map(|c| fixed(max_u(c))),
+        ),
+    ];
+    for (quantity, paper, [segment, gauss]) in rows {
+        beside.push(vec![quantity.into(), paper, segment, gauss])?;
+    }
     Ok(beside)
 }
 
@@ -326,6 +345,18 @@ fn record_paper_facts(f: &mut Facts, cases: &[Case; 2], map_max: [f64; 2]) -> Re
     )?;
     f.number("gauss_map_log10", map_max[1].log10(), Format::Fixed(2))?;
     f.number("gauss_map_percent", map_max[1], Format::Percent(2))?;
+    for (body, [near, far]) in syy_map_rows(gauss)? {
+        f.number(
+            &format!("gauss_map_{body}_interface_log10"),
+            near.log10(),
+            Format::Fixed(2),
+        )?;
+        f.number(
+            &format!("gauss_map_{body}_away_log10"),
+            far.log10(),
+            Format::Fixed(2),
+        )?;
+    }
     f.number("gauss_max_u", max_u(gauss), Format::Fixed(5))?;
     f.number("segment_max_u", max_u(segment), Format::Fixed(5))?;
     // The paper's own history: how far its first iterate is from the exact
@@ -384,24 +415,13 @@ fn record_case_facts(f: &mut Facts, cases: &[Case; 2]) -> Result<()> {
 /// the slave in all three.
 fn write_patches(chapter: &mut Chapter) -> Result<()> {
     let scene = companion::shipped("taylor.toml")?;
-    let exact = exact(&scene);
     let mut table = Table::new(vec![
         Column::plain("lower_block", "lower block"),
         Column::plain("elements", "elements (left, right)"),
         Column::plain("ties", "tied interfaces"),
         Column::plain("iterations", "BFGS iterations"),
-        Column::new(
-            "max_rel_error_syy",
-            "max |σ_yy + p|/p",
-            Unit::None,
-            Format::Sci(2),
-        ),
-        Column::new(
-            "max_displacement_error",
-            "max ‖u − u*‖",
-            Unit::Metre,
-            Format::Sci(2),
-        ),
+        sci("max_rel_error_syy", "max |σ_yy + p|/p", Unit::None),
+        sci("max_displacement_error", "max ‖u − u*‖", Unit::Metre),
     ]);
     for (lower, name) in [
         (LowerBlock::One, "one_patch"),
@@ -410,7 +430,7 @@ fn write_patches(chapter: &mut Chapter) -> Result<()> {
     ] {
         let problem = blocks_problem(&scene, lower)?;
         let solution = solve(&problem, &scene.solver)?;
-        let e = patch_errors(&problem, &solution.full, &exact)?;
+        let e = patch_errors(&problem, &solution.full, &Exact::of_problem(&problem)?)?;
         let elements: Vec<String> = lower_elements(lower)
             .iter()
             .map(|[x, y]| format!("{x}×{y}"))

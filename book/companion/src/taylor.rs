@@ -27,6 +27,21 @@ pub struct Exact {
 }
 
 impl Exact {
+    /// The exact state of a built Taylor scene (`data/scenes/taylor.toml`
+    /// or a variant of it): its pressure load and the blocks' common
+    /// material, read here once for the chapter program and the tests.
+    pub fn of_problem(problem: &Problem) -> Result<Exact> {
+        let material = problem
+            .bodies
+            .first()
+            .ok_or_else(|| Error::invalid("taylor problem", "bodies", "expected a body"))?
+            .material;
+        Ok(Exact {
+            pressure: pressure(&problem.loads)?,
+            material,
+        })
+    }
+
     pub fn displacement(&self, x: [f64; 2]) -> [f64; 2] {
         let strain_y = -self.pressure / self.material.young;
         let strain_x = -self.material.poisson * strain_y;
@@ -80,6 +95,17 @@ pub struct PatchErrors {
     pub force: f64,
 }
 
+/// The pressure of the Taylor scene's one pressure load.
+fn pressure<B>(loads: &[Load<B>]) -> Result<f64> {
+    loads
+        .iter()
+        .find_map(|l| match l {
+            Load::Pressure { pressure, .. } => Some(*pressure),
+            _ => None,
+        })
+        .ok_or_else(|| Error::invalid("taylor scene", "loads", "expected a pressure"))
+}
+
 /// How the lower block of [`blocks_problem`] is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LowerBlock {
@@ -118,14 +144,7 @@ pub fn blocks_problem(scene: &Scene, lower: LowerBlock) -> Result<Problem> {
             "expected the bodies `lower, upper` of data/scenes/taylor.toml",
         ));
     };
-    let pressure = scene
-        .loads
-        .iter()
-        .find_map(|l| match l {
-            Load::Pressure { pressure, .. } => Some(*pressure),
-            _ => None,
-        })
-        .ok_or_else(|| Error::invalid("taylor scene", "loads", "expected a pressure"))?;
+    let pressure = pressure(&scene.loads)?;
     let nitsche = scene
         .contacts
         .first()
