@@ -121,10 +121,10 @@ fn penalty_claim() -> Result<Claim> {
     );
     Ok(Claim {
         key: "penalty",
-        claim: "the empirical penalty (11) spares the per-iteration eigenvalue problem",
+        claim: "the empirical penalty (11) spares the per-iteration eigenvalue problem (judged here: is (11) above the θ = 0 stability bound?)",
         verdict,
         evidence,
-        conditions: "θ = 0, penalty factor 1, p = 1…5, 16², where the bodies first touch; stability only, cost not measured",
+        conditions: "θ = 0, penalty factor 1, p = 1 (Q1 on the disk and the cylinders) to 5, 16², where the bodies first touch; judged on stability only: no cost is measured",
         chapter: "[The penalty, measured](penalty_study.md)",
     })
 }

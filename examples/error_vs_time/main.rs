@@ -104,7 +104,7 @@ struct Run {
 
 // ANCHOR: measure
 /// Solves one rung with BFGS (Newton if BFGS fails), timing assembly +
-/// solve (median of 5 below 32², one run above), and measures it against
+/// solve (median of 5 below 32², one run from 32² on), and measures it against
 /// the reference and against Hertz.
 fn measure(method: Method, n: usize, reference: &Reference, exact: &Hertz) -> Result<Run> {
     let scene = setup::scene(method.refine(n))?;

@@ -469,27 +469,16 @@ fn compare_sharp_penalty() -> Result<SharpRuns> {
 /// The prose under Table PS2 quotes how far the three θ spread p₀, and
 /// how many points θ = 1 with (11) leaves below its bound.
 fn record_sharp_facts(f: &mut Facts, sharp: &SharpRuns) -> Result<()> {
-    let theta_spread = &sharp.theta_spread;
-    f.number(
-        "theta_spread_empirical_16",
-        theta_spread[0][0],
-        Format::Percent(1),
-    )?;
-    f.number(
-        "theta_spread_sharp2_16",
-        theta_spread[0][2],
-        Format::Percent(1),
-    )?;
-    f.number(
-        "theta_spread_empirical_32",
-        theta_spread[1][0],
-        Format::Percent(1),
-    )?;
-    f.number(
-        "theta_spread_sharp2_32",
-        theta_spread[1][2],
-        Format::Percent(1),
-    )?;
+    // per mesh, per choice of Table PS2: (11), sharp ×1, sharp ×2
+    for (im, n) in [16usize, 32].into_iter().enumerate() {
+        for (ic, choice) in ["empirical", "sharp1", "sharp2"].into_iter().enumerate() {
+            f.number(
+                &format!("theta_spread_{choice}_{n}"),
+                sharp.theta_spread[im][ic],
+                Format::Percent(1),
+            )?;
+        }
+    }
     for (im, n) in [16usize, 32].into_iter().enumerate() {
         let (active, inactive) = sharp.theta1_empirical[im];
         f.number(
