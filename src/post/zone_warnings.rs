@@ -61,7 +61,8 @@ pub fn zone_warnings(
             let across = zones[main].samples.len() as f64 / per as f64;
             let side_elements = pieces.clone().map(|k| profile.pair(k).len()).sum::<usize>() / per;
             if across < ZONE_ELEMENTS {
-                let advised = (side_elements as f64 * ZONE_ELEMENTS_TARGET / across).ceil() as usize;
+                let advised =
+                    (side_elements as f64 * ZONE_ELEMENTS_TARGET / across).ceil() as usize;
                 out.push(Warning::CoarseZone {
                     contact: c,
                     across,

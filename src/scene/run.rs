@@ -66,9 +66,12 @@ impl Scene {
         clock.charge(Phase::Factorisation, factorisation);
         clock.charge(Phase::Iterations, solve - factorisation);
         // the zones are measured on the dense profile, which the solver
-        // does not sample; a profile that cannot be sampled (a folded map)
-        // leaves them unmeasured here and fails the outputs that need it
-        let profile = PressureProfile::dense(&problem, &solution.full).ok();
+        // does not sample, and which is sampled only for the outputs that
+        // show it (a run without them stays as cheap as its solve); one
+        // that cannot be sampled (a folded map) fails those outputs below
+        let profile = (o.pressure_profile || o.figures || o.summary)
+            .then(|| PressureProfile::dense(&problem, &solution.full).ok())
+            .flatten();
         if let Some(profile) = &profile {
             let zones = post::zone_warnings(&problem, profile, &solution.warnings);
             solution.warnings.extend(zones);
