@@ -11,9 +11,13 @@
 pub mod ends;
 pub mod hertz;
 mod measures;
+pub mod zone_warnings;
+pub mod zones;
 
 pub use ends::{SideEndKind, SlaveEnd, ZoneBounds};
 pub use measures::ContactMeasures;
+pub use zone_warnings::zone_warnings;
+pub use zones::Zone;
 
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
@@ -73,6 +77,9 @@ pub struct PressureProfile {
     samples: Vec<ProfileSample>,
     /// Where the zones of every pair's slave side may end.
     bounds: Vec<ZoneBounds>,
+    /// Samples per slave element, when they were placed per element
+    /// ([`PressureProfile::sample`]); unknown for given points.
+    per_element: Option<usize>,
 }
 
 /// The contact points of `problem`'s pairs placed at `per_element` Gauss
@@ -114,7 +121,10 @@ impl PressureProfile {
             ));
         }
         let points = dense_contact_points(problem, per_element)?;
-        Ok(Self::from_points(problem, &points, full))
+        Ok(Self {
+            per_element: Some(per_element),
+            ..Self::from_points(problem, &points, full)
+        })
     }
 
     /// The profile at the given contact points of `problem` (for instance
@@ -138,7 +148,11 @@ impl PressureProfile {
             })
             .collect();
         samples.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.t.total_cmp(&b.t)));
-        Self { samples, bounds }
+        Self {
+            samples,
+            bounds,
+            per_element: None,
+        }
     }
 
     /// The dense profile: [`PROFILE_SAMPLES_PER_ELEMENT`] points per slave
@@ -196,6 +210,28 @@ impl PressureProfile {
     /// (a new user's half disk under a ceiling: half_width 0.0187 where the
     /// floor gave 0.0470 for the same profile).
     pub fn measures_joined(&self, pairs: std::ops::Range<usize>) -> ContactMeasures {
+        let (samples, joined) = self.joined(pairs);
+        ContactMeasures::of(&samples, &joined)
+    }
+
+    /// The zones of the consecutive pairs `pairs` joined end to end, as in
+    /// [`PressureProfile::measures_joined`], with the index of the main one
+    /// ([`zones::main_zone`]).
+    pub fn zones_joined(&self, pairs: std::ops::Range<usize>) -> (Vec<Zone>, Option<usize>) {
+        let zones = zones::zones_of(&self.joined(pairs).0);
+        let main = zones::main_zone(&zones);
+        (zones, main)
+    }
+
+    /// Samples per slave element, if the profile was sampled per element.
+    pub fn per_element(&self) -> Option<usize> {
+        self.per_element
+    }
+
+    /// The regular samples of `pairs` in order along the boundary they
+    /// make, and where its zones may end (see
+    /// [`PressureProfile::measures_joined`]).
+    fn joined(&self, pairs: std::ops::Range<usize>) -> (Vec<ProfileSample>, ZoneBounds) {
         let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
         let ends_of = |k: usize| self.bounds[k].slave.map(|e| e.at);
         // distance of a point to the nearer end of piece k
@@ -237,7 +273,7 @@ impl PressureProfile {
             }
             samples.extend(piece);
         }
-        ContactMeasures::of(&samples, &joined)
+        (samples, joined)
     }
 
     /// The largest pressure of pair `pair` over its regular samples: the

@@ -306,6 +306,8 @@ impl Row {
                 Warning::NearlyIncompressible { .. } => "locking".to_string(),
                 Warning::ZoneAtSideEnd { .. } => "zone at side end".to_string(),
                 Warning::ClosedFacingAway { .. } => "closed facing away".to_string(),
+                Warning::SeveralZones { zones, .. } => format!("{} zones", zones.len()),
+                Warning::CoarseZone { .. } => "coarse zone".to_string(),
             });
         }
         parts.join("; ")

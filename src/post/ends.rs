@@ -16,7 +16,7 @@ use crate::problem::Problem;
 pub enum SideEndKind {
     /// The end lies on a symmetry line: a straight side of the same body
     /// through it whose control points all hold the displacement normal to
-    /// it (the Hertz half disk's diameter). The modelled body is half of a
+    /// it at 0 (the Hertz half disk's diameter). The modelled body is half of a
     /// symmetric one.
     Symmetry,
     /// Any other end: a corner or edge of the body, or a boundary that goes
@@ -78,7 +78,7 @@ impl ZoneBounds {
 
 /// Whether `corner`, an end of `side` of patch `slave`, lies on a
 /// symmetry line of the slave body (see [`SideEndKind::Symmetry`]): a
-/// straight side of the same body through it, held normal to itself. A
+/// straight side of the same body through it, held normal to itself at 0. A
 /// support holds one Cartesian component, so the line runs along an axis.
 /// The angle it makes with the slave side does not matter (the
 /// isoparametric Q2 disk meets its diameter a little off 90°).
@@ -124,16 +124,16 @@ fn end_kind(problem: &Problem, slave: usize, side: Side, corner: [f64; 2]) -> Si
             let straight = cps
                 .iter()
                 .all(|&i| (at(i)[comp] - corner[comp]).abs() <= tol);
-            // held normal to it, all alike (a symmetry line moved rigidly is
-            // a symmetry line still)
-            let held: Vec<Option<f64>> = cps
-                .iter()
-                .map(|&i| {
-                    let g = map.global(b, i, comp);
-                    map.free(g).is_none().then(|| map.prescribed(g))
-                })
-                .collect();
-            straight && held.iter().all(|v| v.is_some() && *v == held[0])
+            // held normal to it, and in place: a side pushed normal to
+            // itself (u_n = δ ≠ 0) moves the body there, while its mirror
+            // image would move by −δ, so it is no symmetry line (a block on
+            // such rollers, its zone the whole bottom [0, 1], reported
+            // half_width = 1 instead of 0.5)
+            let held = cps.iter().all(|&i| {
+                let g = map.global(b, i, comp);
+                map.free(g).is_none() && map.prescribed(g) == 0.0
+            });
+            straight && held
         });
     if symmetric {
         SideEndKind::Symmetry

@@ -1,6 +1,7 @@
 //! The peak pressure p₀ and the half-width a of a sampled contact profile.
 
 use super::ends::{SideEndKind, ZoneBounds};
+use super::zones::{main_zone, zones_of};
 use super::ProfileSample;
 
 /// The peak pressure and the contact half-width of one contact pair.
@@ -18,6 +19,12 @@ pub struct ContactMeasures {
     /// How many separate contact zones the profile has (1 for a single,
     /// connected zone; more flags contact away from the main zone).
     pub zones: usize,
+    /// The largest sampled pressure over every zone: p₀ when there is one
+    /// zone, more when another zone peaks higher than the main one.
+    pub p_max: f64,
+    /// How many samples the main zone holds (with the samples per slave
+    /// element, how many elements it spans).
+    pub main_samples: usize,
 }
 
 /// How the main zone ends on one side, as a position along the tangent.
@@ -43,11 +50,12 @@ impl ContactMeasures {
     /// side, which may end at `bounds`.
     ///
     /// The contact zones are the runs of consecutive samples where the
-    /// bracket P is negative. The **main zone** is the one holding the
-    /// loaded sample of least initial gap: where the bodies first touch.
-    /// (A zone elsewhere is real in the discrete solution, but it is not the
-    /// contact the measures describe: for instance a spurious one where the
-    /// stress of a degenerate parametrisation is large; `zones` counts them.)
+    /// bracket P is negative. The **main zone** is the one carrying the
+    /// largest force ([`main_zone`]). (A zone elsewhere is real in the
+    /// discrete solution, but it is not the contact the measures describe:
+    /// for instance a spike where the stress of a degenerate
+    /// parametrisation is large; `zones` counts them, `p_max` holds the
+    /// highest peak of all.)
     ///
     /// p₀ is the largest pressure of the main zone. Its ends are the sign
     /// changes of P, located by linear interpolation of the *signed* bracket
@@ -64,29 +72,18 @@ impl ContactMeasures {
     /// disk — and the half-width is the extent itself. With no loaded sample
     /// every measure is 0.
     pub fn of(samples: &[ProfileSample], bounds: &ZoneBounds) -> Self {
-        let mut zones: Vec<std::ops::Range<usize>> = Vec::new();
-        for (k, s) in samples.iter().enumerate() {
-            if s.bracket < 0.0 {
-                match zones.last_mut() {
-                    Some(z) if z.end == k => z.end = k + 1,
-                    _ => zones.push(k..k + 1),
-                }
-            }
-        }
-        let first_touch = samples
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| s.bracket < 0.0)
-            .min_by(|a, b| a.1.g0.total_cmp(&b.1.g0))
-            .map(|(k, _)| k);
-        let Some(main) = first_touch.and_then(|k| zones.iter().find(|z| z.contains(&k))) else {
+        let zones = zones_of(samples);
+        let Some(main) = main_zone(&zones) else {
             return Self {
                 p0: 0.0,
                 peak_at: [0.0; 2],
                 half_width: 0.0,
                 zones: 0,
+                p_max: 0.0,
+                main_samples: 0,
             };
         };
+        let main = zones[main].samples.clone();
         let peak = samples[main.clone()]
             .iter()
             .max_by(|a, b| a.pressure().total_cmp(&b.pressure()))
@@ -144,6 +141,8 @@ impl ContactMeasures {
             peak_at: peak.x,
             half_width,
             zones: zones.len(),
+            p_max: zones.iter().map(|z| z.p0).fold(0.0, f64::max),
+            main_samples: main.len(),
         }
     }
 }

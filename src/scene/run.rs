@@ -60,11 +60,22 @@ impl Scene {
         let problem = valid.assemble(&mut clock)?;
         super::check::vtu_samplable(o, &problem.bodies)?;
         clock.lap(Phase::ParseAndBuild);
-        let solution = solver::solve(&problem, &self.solver)?;
+        let mut solution = solver::solve(&problem, &self.solver)?;
         let solve = clock.take();
         let factorisation = solution.phases.condensation.min(solve);
         clock.charge(Phase::Factorisation, factorisation);
         clock.charge(Phase::Iterations, solve - factorisation);
+        // the zones are measured on the dense profile, which the solver
+        // does not sample, and which is sampled only for the outputs that
+        // show it (a run without them stays as cheap as its solve); one
+        // that cannot be sampled (a folded map) fails those outputs below
+        let profile = (o.pressure_profile || o.figures || o.summary)
+            .then(|| PressureProfile::dense(&problem, &solution.full).ok())
+            .flatten();
+        if let Some(profile) = &profile {
+            let zones = post::zone_warnings(&problem, profile, &solution.warnings);
+            solution.warnings.extend(zones);
+        }
         let full = &solution.full;
         let contact_force = post::contact_resultant(&problem, full).map(no_negative_zero);
         let active_points = problem.active_points(&solution.u);
@@ -88,6 +99,7 @@ impl Scene {
                     applied_force,
                     active_points,
                     stability: &stability,
+                    profile: profile.as_ref(),
                 };
                 let target = set.target().to_path_buf();
                 let unwritten =
@@ -135,14 +147,20 @@ impl Scene {
             applied_force,
             active_points,
             stability,
+            profile,
         } = *out;
         let o = &self.output;
         let full = &solution.full;
         let history = &solution.history;
-        let profile = if o.pressure_profile || o.figures || o.summary {
-            Some(PressureProfile::dense(problem, full)?)
-        } else {
-            None
+        let sampled;
+        let profile = match (o.pressure_profile || o.figures || o.summary, profile) {
+            (false, _) => None,
+            (true, Some(p)) => Some(p),
+            (true, None) => {
+                // sampled again for its error
+                sampled = PressureProfile::dense(problem, full)?;
+                Some(&sampled)
+            }
         };
         let contact = match (applied_force, &profile) {
             (Some(_), Some(profile)) => {
@@ -161,6 +179,7 @@ impl Scene {
                             p0: no_negative_zero(m.p0),
                             half_width: no_negative_zero(m.half_width),
                             zones: m.zones,
+                            p_max: no_negative_zero(m.p_max),
                             contact_force: f.map(no_negative_zero),
                             penalty_below_bound_points: st.iter().map(|s| s.active_below).sum(),
                             min_penalty_ratio: st
@@ -290,4 +309,6 @@ struct Outputs<'a> {
     applied_force: Option<[f64; 2]>,
     active_points: usize,
     stability: &'a [PenaltyStability],
+    /// The dense profile, if it could be sampled.
+    profile: Option<&'a PressureProfile>,
 }

@@ -101,6 +101,8 @@ pub(super) struct PairSummary {
     pub(super) half_width: f64,
     /// Separate contact zones (1: one connected zone).
     pub(super) zones: usize,
+    /// The largest pressure over every zone (p0 describes the main one).
+    pub(super) p_max: f64,
     /// Force of the master on the slave.
     pub(super) contact_force: [f64; 2],
     /// Active contact points whose penalty γ lies below the stability bound

@@ -15,8 +15,9 @@ mod side_end;
 mod solution;
 
 pub use kinds::{
-    Counted, LockingRemedy, PenaltyRemedy, SideEnd, SlaveExtent, Warning, LOCKING, LOCKING_POISSON,
-    LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
+    Counted, LockingRemedy, PenaltyRemedy, SideEnd, SlaveExtent, Warning, ZoneShare, LOCKING,
+    LOCKING_POISSON, LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
+    ZONE_ELEMENTS, ZONE_ELEMENTS_TARGET, ZONE_SHARE,
 };
 pub use setup::{before_solve, locking, setup_warnings};
 pub use side_end::zones_at_side_end;

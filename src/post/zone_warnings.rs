@@ -1,0 +1,76 @@
+//! The warnings about the contact zones of a solution, which need its
+//! dense pressure profile: several zones sharing the force
+//! ([`Warning::SeveralZones`]), and a main zone too few elements wide to
+//! measure ([`Warning::CoarseZone`]).
+
+use super::PressureProfile;
+use crate::problem::Problem;
+use crate::solver::warning::{ZoneShare, ZONE_ELEMENTS, ZONE_ELEMENTS_TARGET, ZONE_SHARE};
+use crate::solver::Warning;
+
+/// The zone warnings of every contact of `problem`, measured on `profile`
+/// (the dense profile of the solution), beside the solver's `existing`
+/// warnings: a contact already warned for a cause that makes its zones
+/// meaningless (closed through its slave, resting on too few points, its
+/// active set in doubt) gets no zone warning, whose advice would not fix it.
+pub fn zone_warnings(
+    problem: &Problem,
+    profile: &PressureProfile,
+    existing: &[Warning],
+) -> Vec<Warning> {
+    let doubtful = |c: usize| {
+        existing.iter().any(|w| {
+            w.contact() == Some(c)
+                && matches!(
+                    w,
+                    Warning::ClosedFacingAway { .. }
+                        | Warning::UnresolvedContact { .. }
+                        | Warning::PenaltyBelowBound { .. }
+                )
+        })
+    };
+    let mut out = Vec::new();
+    for (c, pieces) in problem.contacts.iter() {
+        if doubtful(c) {
+            continue;
+        }
+        let (zones, main) = profile.zones_joined(pieces.clone());
+        let total: f64 = zones.iter().map(|z| z.force).sum();
+        let Some(main) = main.filter(|_| total > 0.0) else {
+            continue;
+        };
+        let shares: Vec<ZoneShare> = zones
+            .iter()
+            .enumerate()
+            .map(|(k, z)| ZoneShare {
+                share: z.force / total,
+                p0: z.p0,
+                at: z.peak_at,
+                main: k == main,
+            })
+            .filter(|z| z.share >= ZONE_SHARE)
+            .collect();
+        if shares.len() > 1 {
+            out.push(Warning::SeveralZones {
+                contact: c,
+                zones: shares,
+            });
+        }
+        // the samples were placed per element: their count is the width
+        if let Some(per) = profile.per_element() {
+            let across = zones[main].samples.len() as f64 / per as f64;
+            let side_elements = pieces.clone().map(|k| profile.pair(k).len()).sum::<usize>() / per;
+            if across < ZONE_ELEMENTS {
+                let advised =
+                    (side_elements as f64 * ZONE_ELEMENTS_TARGET / across).ceil() as usize;
+                out.push(Warning::CoarseZone {
+                    contact: c,
+                    across,
+                    side_elements,
+                    advised,
+                });
+            }
+        }
+    }
+    out
+}

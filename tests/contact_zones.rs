@@ -1,0 +1,161 @@
+//! What the run reports about its contact zones: the main zone the
+//! measures describe does not depend on the slave side's direction, a
+//! contact whose force several zones share warns and records the largest
+//! pressure of all (`p_max`), a roller that moves the body is no symmetry
+//! line, and a main zone too few elements wide to measure warns.
+
+use iga_contact::scene::Scene;
+use iga_contact::solver::Warning;
+use std::path::PathBuf;
+
+/// An arch 1 wide whose curved bottom touches a floor near both ends, its
+/// top pressed down and held in x; `reversed` parametrises it from right
+/// to left and top to bottom (the same body).
+fn arch(reversed: bool) -> Scene {
+    let (points, top, bottom) = if reversed {
+        (
+            "[[1.0, 0.5], [0.3, 0.5], [0.0, 0.5], [1.0, 0.0], [0.3, 0.1], [0.0, 0.0]]",
+            "eta_min",
+            "eta_max",
+        )
+    } else {
+        (
+            "[[0.0, 0.0], [0.3, 0.1], [1.0, 0.0], [0.0, 0.5], [0.5, 0.5], [1.0, 0.5]]",
+            "eta_max",
+            "eta_min",
+        )
+    };
+    // the reversed top's middle point lies at x = 0.3, not 0.5: a straight
+    // top either way, parametrised differently
+    Scene::from_toml_str(&format!(
+        r#"
+[[body]]
+name = "arch"
+geometry = {{ nurbs = {{ degree = [2, 1], knots_xi = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0], knots_eta = [0.0, 0.0, 1.0, 1.0], control_points = {points}, weights = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0] }} }}
+refine = {{ degree = 2, elements = [32, 4] }}
+material = {{ young = 1.0e6, poisson = 0.3, plane = "strain" }}
+[[support]]
+body = "arch"
+side = "{top}"
+component = "x"
+[[load]]
+pressure = {{ body = "arch", side = "{top}", pressure = 1.0e4 }}
+[[contact]]
+slave = "arch"
+slave_side = "{bottom}"
+master = {{ rigid_segment = {{ from = [-0.5, 0.0], to = [1.5, 0.0] }} }}
+[output]
+summary = true
+"#
+    ))
+    .unwrap()
+}
+
+/// Runs `scene` into a fresh directory and returns its warnings and
+/// contact[0]'s table of `summary.toml`.
+fn run(scene: &Scene, name: &str) -> (Vec<Warning>, toml::Table) {
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("iga-zones-{name}-{}", std::process::id()));
+    let report = scene.run(&dir).unwrap();
+    let text = std::fs::read_to_string(dir.join("summary.toml")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let summary: toml::Table = text.parse().unwrap();
+    let contact = summary["contact"].as_array().unwrap()[0]
+        .as_table()
+        .unwrap()
+        .clone();
+    (report.warnings, contact)
+}
+
+fn num(t: &toml::Table, key: &str) -> f64 {
+    t[key].as_float().unwrap()
+}
+
+/// The arch's two zones: the measures describe the same zone whichever
+/// way the side runs (old code: p₀ 88,605 one way, 186,309 the other),
+/// the run warns with both zones' shares, and `p_max` is the higher peak.
+#[test]
+fn two_zones_are_measured_alike_both_ways_and_warned() {
+    let (w, a) = run(&arch(false), "arch");
+    let (w_rev, b) = run(&arch(true), "arch-rev");
+    for key in ["p0", "half_width", "p_max"] {
+        let (x, y) = (num(&a, key), num(&b, key));
+        assert!((x / y - 1.0).abs() <= 0.02, "{key}: {x} and {y}");
+    }
+    assert!(num(&a, "p_max") >= 2.0 * num(&a, "p0"), "{a:?}");
+    for w in [w, w_rev] {
+        let zones = w
+            .iter()
+            .find_map(|w| match w {
+                Warning::SeveralZones { zones, .. } => Some(zones.clone()),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no SeveralZones in {w:?}"));
+        assert_eq!(zones.len(), 2);
+        assert_eq!(zones.iter().filter(|z| z.main).count(), 1);
+        let total: f64 = zones.iter().map(|z| z.share).sum();
+        assert!((total - 1.0).abs() <= 1e-9);
+        assert!(zones.iter().all(|z| z.share > 0.4), "{zones:?}");
+    }
+}
+
+/// A block on rollers whose left side is pushed 1 cm to the right rests on
+/// a floor under its whole bottom: the zone [0, 1] is whole, since the side
+/// moved is no symmetry line (old code: half_width 1.0).
+#[test]
+fn a_roller_that_moves_the_body_is_no_symmetry_line() {
+    let half_width = |value: f64| {
+        let scene = Scene::from_toml_str(&format!(
+            r#"
+[[body]]
+name = "block"
+geometry = {{ rectangle = {{ x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 }} }}
+refine = {{ degree = 2, elements = [16, 4] }}
+material = {{ young = 1.0e6, poisson = 0.3, plane = "strain" }}
+[[support]]
+body = "block"
+side = "xi_min"
+component = "x"
+value = {value:?}
+[[load]]
+pressure = {{ body = "block", side = "eta_max", pressure = 1.0e4 }}
+[[contact]]
+slave = "block"
+slave_side = "eta_min"
+master = {{ rigid_segment = {{ from = [-0.5, 0.0], to = [1.5, 0.0] }} }}
+[output]
+summary = true
+"#
+        ))
+        .unwrap();
+        num(&run(&scene, &format!("roller-{value}")).1, "half_width")
+    };
+    // held in place: a symmetric half of a block 2 wide
+    assert!((half_width(0.0) - 1.0).abs() <= 1e-9);
+    let moved = half_width(0.01);
+    assert!((moved - 0.5).abs() <= 1e-9, "{moved}");
+}
+
+/// Hertz on 4 × 4 quadratic elements: the zone spans 1.3 slave elements,
+/// and a is 9.5 % off; the run warns and advises a finer slave side. On
+/// 16 × 16 (4.5 elements across) and on the shipped 8 × 8 it does not.
+#[test]
+fn a_zone_across_few_elements_warns() {
+    let coarse = |n: usize| {
+        let mut s = companion::shipped("hertz.toml").unwrap();
+        s.body_mut("disk").unwrap().refine = Some(iga_contact::scene::RefineSpec::iga(2, [n, n]));
+        let (w, _) = run(&s, &format!("hertz-{n}"));
+        w.into_iter().find_map(|w| match w {
+            Warning::CoarseZone {
+                across, advised, ..
+            } => Some((across, advised)),
+            _ => None,
+        })
+    };
+    let (across, advised) = coarse(4).expect("4 × 4 warns");
+    assert!((1.0..1.5).contains(&across), "{across}");
+    // the advice puts three elements across the zone
+    assert!(advised >= 9, "{advised}");
+    assert_eq!(coarse(8), None);
+    assert_eq!(coarse(16), None);
+}
