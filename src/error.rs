@@ -4,17 +4,19 @@
 //! input names the field path and the offending value, a solver failure
 //! carries its full iteration history. The failures of a layer are typed
 //! data of their own ([`GeometryError`], [`FactorError`], [`SingularError`],
-//! [`OutOfMemory`], [`FloatingBody`]) that the crate error only wraps: the
+//! [`OutOfMemory`], [`FloatingBody`], [`Diagnosis`]) that the crate error only wraps: the
 //! message is rendered once, by `Display`, where the error is shown.
 //!
 //! They live here, below every layer that raises them, so that the crate
 //! error can name them without depending on a layer above it.
 
+mod diagnosis;
 mod factor;
 mod geometry;
 mod kernel;
 mod memory;
 
+pub use diagnosis::{Diagnosis, Finding, Halt};
 pub use factor::FactorError;
 pub use geometry::{ContactPart, GeometryError};
 pub use kernel::{FloatingBody, SingularError};
@@ -56,8 +58,11 @@ pub enum Error {
     // the count first: the reason ends with the diagnosis, whose last part
     // (a count of failed curvature conditions, say) must not read as if it
     // were what happened after that many iterations
-    #[error("not converged after {} iteration{} (last relative residual {:.3e}): {reason}", history.len(), if history.len() == 1 { "" } else { "s" }, history.last_relative_residual())]
-    NotConverged { reason: String, history: History },
+    #[error("not converged after {} iteration{} (last relative residual {:.3e}): {diagnosis}", history.len(), if history.len() == 1 { "" } else { "s" }, history.last_relative_residual())]
+    NotConverged {
+        diagnosis: Diagnosis,
+        history: History,
+    },
     /// The output location cannot take the outputs (a file where a
     /// directory should be, no permission, foreign content): found before
     /// any work is done.

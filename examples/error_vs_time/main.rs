@@ -118,8 +118,8 @@ fn measure(method: Method, n: usize, reference: &Reference, exact: &Hertz) -> Re
             Ok((problem, solution))
         }) {
             Ok(t) => t,
-            Err(Error::NotConverged { reason, .. }) => {
-                solver = format!("Newton (BFGS failed: {reason})");
+            Err(Error::NotConverged { diagnosis, .. }) => {
+                solver = format!("Newton (BFGS failed: {diagnosis})");
                 continue;
             }
             Err(e) => return Err(e),

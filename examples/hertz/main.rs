@@ -125,13 +125,13 @@ fn run(
     let (problem, solution) = timed.value;
     let solution = match solution {
         Ok(s) => s,
-        Err(Error::NotConverged { reason, history }) => {
+        Err(Error::NotConverged { diagnosis, history }) => {
             return Ok(Err(Failure {
                 degree,
                 elements,
                 solver,
                 history,
-                reason,
+                reason: diagnosis.to_string(),
             }))
         }
         Err(e) => return Err(e),
@@ -502,13 +502,15 @@ fn missing(what: &str) -> Error {
 }
 
 fn not_converged(f: &Failure) -> Error {
-    Error::NotConverged {
-        reason: format!(
-            "{} on p = {}, {}²: {}",
-            f.solver, f.degree, f.elements, f.reason
+    Error::invalid(
+        "hertz ladder",
+        format!("{} on p = {}, {}²", f.solver, f.degree, f.elements),
+        format!(
+            "needed by a table, but not converged after {} iterations: {}",
+            f.history.len(),
+            f.reason
         ),
-        history: f.history.clone(),
-    }
+    )
 }
 
 /// The largest downward displacement of a run.

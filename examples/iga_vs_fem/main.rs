@@ -91,8 +91,8 @@ fn measure(label: &'static str, refine: RefineSpec) -> Result<Row> {
                 timed = Some((t, opts));
                 break;
             }
-            Err(Error::NotConverged { reason, .. }) => {
-                solver = format!("Newton (BFGS failed: {reason})")
+            Err(Error::NotConverged { diagnosis, .. }) => {
+                solver = format!("Newton (BFGS failed: {diagnosis})")
             }
             Err(e) => return Err(e),
         }

@@ -99,9 +99,9 @@ fn outcome(solver: &'static str, opts: &SolverOptions, elements: usize) -> Resul
             o.factorisations = Some(s.factorisations);
             o.history = s.history;
         }
-        Err(Error::NotConverged { reason, history }) => {
+        Err(Error::NotConverged { diagnosis, history }) => {
             o.history = history;
-            o.failure = Some(reason);
+            o.failure = Some(diagnosis.to_string());
         }
         Err(e) => o.failure = Some(e.to_string()),
     }

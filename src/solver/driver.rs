@@ -6,7 +6,7 @@ use super::diagnosis::failure;
 use super::factorise::Factorisation;
 use super::history::History;
 use super::options::{IterationSpace, OnStall, SolverKind, SolverOptions, Start};
-use super::stopping::Halt;
+use super::stopping::STALL;
 use super::system::{BodySystem, System, TraceSystem};
 use super::warning::{warnings, Warning};
 use super::{bfgs, newton, trace};
@@ -91,7 +91,7 @@ pub fn solve(problem: &Problem, opts: &SolverOptions) -> Result<Solution> {
                 sys.as_ref(),
                 problem,
                 &attempt.u,
-                &Halt::Stalled,
+                &STALL,
                 start,
                 history,
             ));

@@ -5,7 +5,7 @@
 use super::history::{Event, History, Iteration};
 use super::options::SolverOptions;
 use super::vector::norm;
-use std::fmt;
+use crate::error::Halt;
 
 /// The multiple of the round-off floor of ‖R‖ below which a residual
 /// counts as converged. A backward-stable kernel solve leaves a residual of
@@ -18,6 +18,12 @@ pub const ROUND_OFF: f64 = 100.0;
 pub const STALL_PROGRESS: f64 = 0.01;
 /// See [`STALL_PROGRESS`].
 pub const STALL_WINDOW: usize = 10;
+
+/// The halt of a stall by the rule above.
+pub(crate) const STALL: Halt = Halt::Stalled {
+    progress: STALL_PROGRESS,
+    window: STALL_WINDOW,
+};
 
 /// The largest relative residual ‖R‖/‖R₀‖ that round-off may excuse when
 /// `rtol` asks for less: six digits of the residual. Beyond it the iterate
@@ -60,51 +66,6 @@ pub(crate) enum Status {
     Continue,
     Stalled,
     Failed(Halt),
-}
-
-/// Why the stopping rules ended a solve without a root: data, rendered
-/// once by `Display` into the reason of [`crate::Error::NotConverged`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Halt {
-    /// ‖R‖ or ‖Δu‖ stopped being finite, or ‖R‖ grew past 10¹² ‖R₀‖.
-    Diverged,
-    /// `max_iter` iterations ran.
-    IterationLimit,
-    /// ‖R‖ sits at a round-off floor above what a floor may excuse.
-    Unresolvable {
-        /// ‖R‖/‖R₀‖.
-        relative: f64,
-        /// What the floor can mask, relative to ‖R₀‖.
-        level: f64,
-        max_displacement: f64,
-        rtol: f64,
-    },
-    /// The last start's damped steps stopped making progress.
-    Stalled,
-}
-
-impl fmt::Display for Halt {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self {
-            Halt::Diverged => write!(f, "the iteration diverged"),
-            Halt::IterationLimit => write!(f, "iteration limit reached"),
-            Halt::Unresolvable {
-                relative,
-                level,
-                max_displacement,
-                rtol,
-            } => write!(
-                f,
-                "the residual stays at {relative:.1e} of its initial value, above the {RESOLVABLE:e} that round-off may excuse (it can mask up to {level:.1e} here: K u and the contact forces at displacements up to {max_displacement:.3e}) and above rtol = {rtol:e}, so this iterate is no root: a penalty too small to hold the bodies lets them move that far (raise the nitsche.penalty_factor of the contacts), or the input's scale is extreme"
-            ),
-            // the fraction as the book's tables print a percentage (`{:.0} %`)
-            Halt::Stalled => write!(
-                f,
-                "stalled: the damped steps lowered ‖R‖ by less than {:.0} % in {STALL_WINDOW} iterations",
-                100.0 * STALL_PROGRESS
-            ),
-        }
-    }
 }
 
 impl<'a> Tracker<'a> {
@@ -160,6 +121,7 @@ impl<'a> Tracker<'a> {
                 level,
                 max_displacement,
                 rtol: self.opts.rtol,
+                excusable: RESOLVABLE,
             });
         }
         if self.history.len() >= self.opts.max_iter {
@@ -233,7 +195,7 @@ mod tests {
     #[test]
     fn a_stall_reads_as_the_atlas_records_it() {
         assert_eq!(
-            Halt::Stalled.to_string(),
+            STALL.to_string(),
             "stalled: the damped steps lowered ‖R‖ by less than 1 % in 10 iterations"
         );
         assert_eq!(Halt::IterationLimit.to_string(), "iteration limit reached");
