@@ -12,6 +12,7 @@
 
 mod diagnosis;
 mod factor;
+mod faer_text;
 mod geometry;
 mod kernel;
 mod memory;

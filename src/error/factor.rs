@@ -24,7 +24,7 @@ pub enum FactorError {
     OutOfMemory { what: &'static str },
     /// Any other refusal of faer's (an index overflow: the matrix is too
     /// large for its index type).
-    #[error("{what}: {error:?}")]
+    #[error("{what}: {}", super::faer_text::faer(error))]
     Faer {
         what: &'static str,
         error: FaerError,

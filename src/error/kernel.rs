@@ -19,7 +19,7 @@ pub enum SingularError {
     OutsidePattern { row: usize, col: usize },
     /// faer refused the sparse factors of the low-rank correction
     /// ([`crate::problem`]).
-    #[error("cannot build the low-rank factors: {0:?}")]
+    #[error("cannot build the low-rank factors: {}", super::faer_text::creation(.0))]
     LowRankFactors(CreationError),
     /// A solve with a factor gave non-finite values
     /// ([`crate::linsolve::Factor`], the dense trace kernel).
@@ -27,14 +27,14 @@ pub enum SingularError {
     NonFiniteSolution,
     /// The step `what` (the ordering, the symbolic analysis) of the
     /// condensation onto the contact layer failed ([`crate::condense`]).
-    #[error("{what}: {error:?}")]
+    #[error("{what}: {}", super::faer_text::faer(error))]
     Condensation {
         what: &'static str,
         error: FaerError,
     },
     /// The bulk stiffness plus the penalty on the whole contact layer has
     /// no Cholesky factor ([`crate::condense`]).
-    #[error("the bulk stiffness plus the penalty over the whole contact boundary is not positive definite ({0:?}): contact everywhere would not hold the bodies")]
+    #[error("the bulk stiffness plus the penalty over the whole contact boundary is not positive definite ({}): contact everywhere would not hold the bodies", super::faer_text::llt(.0))]
     BulkNotPositiveDefinite(LltError),
     /// The contact layer has `dofs` DOFs, above the `max` that a dense
     /// trace kernel may have (the solver's trace problem).

@@ -22,15 +22,14 @@ pub enum Refusal {
     Workspace(AllocError),
 }
 
-// faer renders its errors by their Debug form; the others read the same
-// way, so every out-of-memory message names the refusal as its type does.
+// faer renders its errors by their Debug form (a type name): say what happened.
 impl std::fmt::Display for Refusal {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Refusal::Faer(e) => write!(f, "{e:?}"),
-            Refusal::Creation(e) => write!(f, "{e:?}"),
-            Refusal::Reserve(e) => write!(f, "{e:?}"),
-            Refusal::Workspace(e) => write!(f, "{e:?}"),
+            Refusal::Faer(e) => write!(f, "{}", super::faer_text::faer(e)),
+            Refusal::Creation(e) => write!(f, "{}", super::faer_text::creation(e)),
+            Refusal::Reserve(e) => write!(f, "{e}"),
+            Refusal::Workspace(_) => write!(f, "the solver's workspace could not be allocated"),
         }
     }
 }
