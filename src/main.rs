@@ -42,7 +42,7 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Refuse the run if its estimated peak memory exceeds this (e.g.
-        /// 8G, 512M) [default: all of the available memory (MemAvailable), or 80% of ulimit -v].
+        /// 8G, 512M) [default: 80% of the available memory (MemAvailable), or 80% of ulimit -v].
         #[arg(long, value_name = "SIZE")]
         max_memory: Option<String>,
     },

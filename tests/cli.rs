@@ -68,6 +68,36 @@ fn invalid_scene_exits_with_2_and_one_error_line_naming_the_key() {
     assert!(!dir.join("out").exists(), "a failed run created outputs");
 }
 
+/// The block of [`block`] made a quadratic patch whose middle control
+/// point is pulled out past the right side: det J < 0 near it, between the
+/// nodes, so no corner test sees it. `check` finds it as `run` does: an
+/// input error (exit 2) naming the geometry, before any solve.
+fn folded() -> String {
+    block(2, [4, 1], "1.0e6", "1.0e4").replace(
+        "geometry = { rectangle = { x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 0.5 } }",
+        "geometry = { nurbs = { degree = [2, 2], knots_xi = [0, 0, 0, 1, 1, 1], \
+         knots_eta = [0, 0, 0, 1, 1, 1], control_points = [[0.0, 0.0], [0.5, 0.0], \
+         [1.0, 0.0], [0.0, 0.25], [1.6, 0.6], [1.0, 0.25], [0.0, 0.5], [0.5, 0.5], \
+         [1.0, 0.5]] } }",
+    )
+}
+
+#[test]
+fn a_folded_map_is_an_input_error_found_by_check() {
+    let dir = workdir("folded");
+    let text = folded();
+    assert!(text.contains("nurbs"), "the block's geometry line changed");
+    std::fs::write(dir.join("folded.toml"), text).unwrap();
+    for cmd in ["check", "run"] {
+        let o = run(&dir, &[cmd, "folded.toml"]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(line.contains("`body[0].geometry` = nurbs"), "{line}");
+        assert!(line.contains("not invertible"), "{line}");
+    }
+    assert!(!dir.join("out").exists(), "a refused run created outputs");
+}
+
 #[test]
 fn unknown_key_exits_with_2() {
     let dir = workdir("unknown-key");
@@ -338,6 +368,42 @@ fn a_scene_over_the_memory_budget_is_refused_naming_the_field() {
     let o = run(&dir, &["check", "small.toml", "--max-memory", "lots"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(single_error_line(&o).contains("--max-memory"));
+}
+
+/// Where the VTU's samples set the peak, the refusal names the key that
+/// sets their number, with its value as written, and the budget that the
+/// run without them fits in admits it once the subdivisions are lowered.
+#[test]
+fn a_vtu_over_the_budget_is_refused_naming_its_subdivisions() {
+    let dir = workdir("vtu-budget");
+    let with = |s: usize| {
+        block(2, [64, 64], "1.0e6", "1.0e4")
+            + &format!("\n[output]\nvtu = true\nvtu_subdivisions = {s}\n")
+    };
+    let peak = |s: usize| {
+        iga_contact::scene::Scene::from_toml_str(&with(s))
+            .unwrap()
+            .estimate()
+            .unwrap()
+            .peak_bytes()
+    };
+    let (low, high) = (peak(2), peak(64));
+    assert!(
+        high > 4.0 * low,
+        "the samples do not set the peak: {low:.3e} {high:.3e}"
+    );
+    let budget = format!("{}M", ((low * high).sqrt() / 1048576.0).round());
+    std::fs::write(dir.join("fine.toml"), with(64)).unwrap();
+    std::fs::write(dir.join("coarse.toml"), with(2)).unwrap();
+    for cmd in ["check", "run"] {
+        let o = run(&dir, &[cmd, "fine.toml", "--max-memory", &budget]);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {}", stderr(&o));
+        let line = single_error_line(&o);
+        assert!(line.contains("`output.vtu_subdivisions` = 64"), "{line}");
+        assert!(line.contains("sample points"), "{line}");
+    }
+    let o = run(&dir, &["check", "coarse.toml", "--max-memory", &budget]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
 
 #[test]

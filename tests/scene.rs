@@ -1096,12 +1096,64 @@ fn geometry_errors_name_the_body() {
         "",
     )
     .replace("\"b\"", "\"bowtie\"");
-    let Err(e) = Scene::from_toml_str(&text).unwrap().build() else {
-        panic!("a folded map was accepted");
-    };
-    let msg = e.to_string();
-    assert!(matches!(e, Error::Geometry(_)), "{msg}");
-    assert!(msg.contains("body[0] (\"bowtie\")"), "{msg}");
+    let scene = Scene::from_toml_str(&text).unwrap();
+    // a fault of the input, found by `check` as well as by the build: the
+    // key of the geometry and the body's name, not a failure of the run
+    for e in [
+        scene.build().err().expect("a folded map was accepted"),
+        scene
+            .check(&iga_contact::resources::Budget::from_machine())
+            .expect_err("check accepted a folded map"),
+    ] {
+        let msg = e.to_string();
+        let Error::InvalidInput { field, value, .. } = &e else {
+            panic!("not an input error: {msg}");
+        };
+        assert_eq!(
+            (field.as_str(), value.as_str()),
+            ("body[0].geometry", "nurbs")
+        );
+        assert!(msg.contains("(body \"bowtie\")"), "{msg}");
+        assert!(msg.contains("det J = 0"), "{msg}");
+    }
+}
+
+/// `mixed` needs a continuous pressure space of degree p − 1 on the body's
+/// knots: none at p = 1, a discontinuous one on a C⁰ Lagrange mesh. Both
+/// are refused naming the formulation, and `local_mixed` runs on each.
+#[test]
+fn mixed_needs_degree_two_and_a_k_refined_body() {
+    for refine in [
+        "{ degree = 1, elements = [4, 1] }",
+        "{ lagrange = 2, elements = [4, 1] }",
+    ] {
+        // the minimal scene (a block on a rigid floor), refined and
+        // formulated as this case says
+        let minimal = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes/minimal.toml"),
+        )
+        .unwrap();
+        let text = minimal.replace(
+            "refine = { degree = 2, elements = [4, 1] }",
+            &format!("refine = {refine}\nformulation = \"mixed\""),
+        );
+        assert!(
+            text.contains("formulation"),
+            "minimal.toml changed its refine line"
+        );
+        let Err(Error::InvalidInput { field, reason, .. }) = Scene::from_toml_str(&text) else {
+            panic!("mixed accepted with refine = {refine}");
+        };
+        assert_eq!(field, "body[0].formulation", "{refine}: {reason}");
+        assert!(reason.contains("local_mixed"), "{refine}: {reason}");
+        let local = text.replace("\"mixed\"", "\"local_mixed\"");
+        let run = Scene::from_toml_str(&local).and_then(|s| s.build());
+        assert!(
+            run.is_ok(),
+            "{refine}: local_mixed refused: {:?}",
+            run.err()
+        );
+    }
 }
 
 #[test]

@@ -108,6 +108,23 @@ pub enum GeometryError {
     },
 }
 
+impl GeometryError {
+    /// Whether the geometric map itself is at fault (zero, folded or nearly
+    /// singular det J), under any context: an error of the input geometry,
+    /// not of a query on it.
+    pub fn is_map_fault(&self) -> bool {
+        match self {
+            GeometryError::DegenerateMap { .. }
+            | GeometryError::NotInvertible { .. }
+            | GeometryError::NearlySingular { .. } => true,
+            GeometryError::Element { cause, .. } | GeometryError::Body { cause, .. } => {
+                cause.is_map_fault()
+            }
+            _ => false,
+        }
+    }
+}
+
 /// The curve of a contact pair a geometric query ran on.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ContactPart {

@@ -47,6 +47,23 @@ pub(super) fn in_body(e: Error, i: usize, name: &str, geometry: &str) -> Error {
     }
 }
 
+/// A map that folds or degenerates at a quadrature point of body `i`
+/// (named `name`, geometry kind `kind`): a fault of the scene's geometry, so an invalid
+/// input naming `body[i].geometry`, not a failure of the run.
+pub(super) fn map_fault(e: Error, i: usize, name: &str, kind: &str) -> Error {
+    match e {
+        Error::Geometry(g) if g.is_map_fault() => Error::invalid(
+            format!("body[{i}].geometry"),
+            kind,
+            format!(
+                "{g} (body {name:?}): the map must be invertible at every quadrature point; move the control \
+                 points (or corners) so that it does not fold"
+            ),
+        ),
+        other => other,
+    }
+}
+
 impl Scene {
     /// The exact patch of body `i`, errors naming the body.
     pub(super) fn exact_patch(&self, i: usize) -> Result<NurbsPatch> {

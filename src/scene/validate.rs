@@ -81,6 +81,33 @@ impl Scene {
                     "the mixed formulations are built for one-patch bodies only",
                 ));
             }
+            if b.formulation == Formulation::Mixed {
+                // `mixed` projects onto the continuous splines of degree
+                // p − 1 on the body's own knots: that space is empty at
+                // p = 1 and discontinuous on a C⁰ Lagrange mesh, whose
+                // interior knots repeat p times
+                let refusal = match b.refine {
+                    Some(RefineSpec::Lagrange { degree, .. }) => Some(format!(
+                        "the continuous pressure space of degree p − 1 needs a k-refined (IGA) \
+                         body, not the C⁰ Lagrange mesh Q{degree}: use formulation = \
+                         \"local_mixed\" (its pressure is per element) or refine = {{ degree = … }}"
+                    )),
+                    _ if b.degree() < 2 => Some(
+                        "the pressure space of degree p − 1 is empty at p = 1: use \
+                         formulation = \"local_mixed\" (Q1 with a constant pressure per element) \
+                         or refine to degree 2 or more"
+                            .to_string(),
+                    ),
+                    _ => None,
+                };
+                if let Some(reason) = refusal {
+                    return Err(Error::invalid(
+                        format!("{f}.formulation"),
+                        format!("{:?}", b.formulation.name()),
+                        reason,
+                    ));
+                }
+            }
             b.material.validate(&format!("{f}.material"))?;
             if b.formulation != Formulation::Displacement && b.material.plane != Plane::Strain {
                 return Err(Error::invalid(
