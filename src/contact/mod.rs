@@ -10,6 +10,7 @@ pub mod penalty;
 pub mod point;
 pub mod projection;
 pub mod stability;
+mod trace;
 
 pub use contacts::Contacts;
 pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
