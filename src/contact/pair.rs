@@ -289,6 +289,7 @@ fn one_side(
                     be: &be,
                     t,
                     w: scale * w,
+                    share: scale,
                 };
                 if let Some(cp) = make_point(
                     id,
@@ -317,11 +318,13 @@ fn one_side(
     Ok(())
 }
 
-/// Where on a slave boundary element a point is placed, and its weight.
+/// Where on a slave boundary element a point is placed, its weight and the
+/// share of the weight its form carries ([`ContactPoint::share`]).
 struct Sample<'a> {
     be: &'a crate::space::BoundaryElement,
     t: f64,
     w: f64,
+    share: f64,
 }
 
 /// The slave side of a pair, for errors.
@@ -371,7 +374,7 @@ fn make_point(
     bodies: &[Body],
     map: &DofMap,
     master: &MasterGeometry,
-    Sample { be, t, w }: Sample,
+    Sample { be, t, w, share }: Sample,
     young: f64,
     degree: usize,
     pressure: Option<&Arc<SplinePressure>>,
@@ -510,6 +513,7 @@ fn make_point(
         trace_constant: 0.0, // set per slave element by `set_trace_constant`
         theta: pair.nitsche.theta.value(),
         weight: w * len,
+        share,
         dofs,
         sn,
         jn,

@@ -247,7 +247,9 @@ pub fn stability_of(
                 let r = cp.gamma / bound;
                 s.min_active_ratio = Some(s.min_active_ratio.map_or(r, |m: f64| m.min(r)));
             }
-            let scale = stability_bound(cp.trace_constant, 0.0);
+            // against the whole weight: the halves of the unbiased form
+            // add to one penalty γ on one gap
+            let scale = stability_bound(cp.trace_constant / cp.share, 0.0);
             if judged && scale > 0.0 {
                 let r = cp.gamma / scale;
                 s.active_over += usize::from(r > over);

@@ -35,8 +35,15 @@ pub struct ContactPoint {
     /// [`super::penalty::stability_bound`] of it loses coercivity.
     pub trace_constant: f64,
     pub theta: f64,
-    /// Quadrature weight including the arc length.
+    /// Quadrature weight including the arc length, and the share below.
     pub weight: f64,
+    /// The share of the contact's weight the point's form carries: 1 in the
+    /// biased form, ½ in each half of the unbiased one. `trace_constant`,
+    /// from the shared weights, is the half's; the penalty's scale against
+    /// the body (over- or under-penalisation) is that of the whole weight,
+    /// `trace_constant / share`, as the two halves add to one penalty γ on
+    /// one gap.
+    pub share: f64,
     /// The degrees of freedom the point's functionals reach, in the global
     /// numbering of the full displacement vector: the two DOFs of each
     /// control point of the slave element holding x¹, then (for an elastic

@@ -1,6 +1,7 @@
 //! The warnings a solve can report, their thresholds, and the words each
 //! prints: the cause, the measurement and the one remedy.
 
+use crate::contact::Sides;
 use crate::material::Formulation;
 
 /// The fewest active points that count as resolving a contact zone.
@@ -172,12 +173,15 @@ pub enum Warning {
         remedy: PenaltyRemedy,
     },
     /// The slave of contact `contact` is more than [`STIFFER_SLAVE`] times
-    /// stiffer than its master.
+    /// stiffer than its master. Under the unbiased form (`sides`), which
+    /// makes each body the slave of one half, `slave` is the stiffer body
+    /// whichever the scene names the slave, and `master` the softer.
     StifferSlave {
         contact: usize,
         slave: String,
         master: String,
         contrast: f64,
+        sides: Sides,
     },
     /// Body `body` is nearly incompressible (ν above [`LOCKING_POISSON`]) in
     /// plane strain on a mesh too coarse for its formulation ([`LOCKING`]).
@@ -386,9 +390,20 @@ impl std::fmt::Display for Warning {
                 slave,
                 master,
                 contrast,
+                sides: Sides::Biased,
             } => write!(
                 f,
                 "contact[{contact}]: the slave {slave:?} is {contrast:.3} times stiffer than the master {master:?}, and the penalty scales with the slave's modulus, so it over-penalises the softer body: make {master:?} the slave and {slave:?} the master"
+            ),
+            Warning::StifferSlave {
+                contact,
+                slave,
+                master,
+                contrast,
+                sides: Sides::Unbiased,
+            } => write!(
+                f,
+                "contact[{contact}]: the unbiased form makes {slave:?}, {contrast:.3} times stiffer than {master:?}, the slave of one half, whose penalty scales with {slave:?}'s modulus, so it over-penalises the softer body: set contact[{contact}].nitsche.sides = \"biased\" with {master:?} the slave and {slave:?} the master"
             ),
             Warning::NearlyIncompressible {
                 body,

@@ -4,7 +4,7 @@
 use super::kinds::{Counted, LockingRemedy, Warning, LOCKING, LOCKING_POISSON, STIFFER_SLAVE};
 use super::penalty::penalty_warnings;
 use crate::contact::penalty::first_touch_of;
-use crate::contact::{ContactPair, ContactPoint, Contacts, Master};
+use crate::contact::{ContactPair, ContactPoint, Contacts, Master, Sides};
 use crate::dofs::Body;
 use crate::material::{Formulation, Plane};
 
@@ -16,7 +16,13 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair], contacts: &Contact
         // the pieces of a contact share its slave body and its master
         let pair = &pairs[pieces.start];
         if let Master::Body { body, .. } = pair.master {
-            let (s, m) = (&bodies[pair.slave], &bodies[body]);
+            let (mut s, mut m) = (&bodies[pair.slave], &bodies[body]);
+            let sides = pair.nitsche.sides;
+            // the unbiased form's mirrored half has the master as its
+            // slave: the stiffer body is a slave whichever is named
+            if sides == Sides::Unbiased && m.material.young > s.material.young {
+                std::mem::swap(&mut s, &mut m);
+            }
             let contrast = s.material.young / m.material.young;
             if contrast > STIFFER_SLAVE {
                 out.push(Warning::StifferSlave {
@@ -24,6 +30,7 @@ pub fn setup_warnings(bodies: &[Body], pairs: &[ContactPair], contacts: &Contact
                     slave: s.name.clone(),
                     master: m.name.clone(),
                     contrast,
+                    sides,
                 });
             }
         }
