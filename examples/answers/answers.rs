@@ -43,6 +43,9 @@ pub enum Class {
     StiffnessScale,
     /// A disk on an elastic block, either body the slave.
     SlaveMaster,
+    /// The unbiased form (each body the slave of one half), on the same
+    /// disk on block.
+    Unbiased,
     /// Hertz at ν up to 0.49999, every θ and degree.
     Poisson,
     /// Hertz with the penalty factor from 1e-12 to 1e6, every θ.
@@ -54,11 +57,12 @@ pub enum Class {
 }
 
 impl Class {
-    pub const ALL: [Class; 8] = [
+    pub const ALL: [Class; 9] = [
         Class::Prescribed,
         Class::LengthScale,
         Class::StiffnessScale,
         Class::SlaveMaster,
+        Class::Unbiased,
         Class::Poisson,
         Class::Penalty,
         Class::Load,
@@ -71,6 +75,7 @@ impl Class {
             Class::LengthScale => "length scale L = 1e-9 … 1e9",
             Class::StiffnessScale => "stiffness scale s = 1e-6 … 1e12",
             Class::SlaveMaster => "slave/master swapped",
+            Class::Unbiased => "unbiased form, block ×1 … ×1e4",
             Class::Poisson => "ν = 0.3 … 0.49999",
             Class::Penalty => "penalty factor 1e-12 … 1e6",
             Class::Load => "load × 1 … 16",
@@ -252,10 +257,21 @@ summary = true
     (scene, young / (1.0 - poisson * poisson) * delta / height)
 }
 
+/// Which body of the disk on the block is the slave.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Slave {
+    /// The disk, the softer body: the references.
+    Disk,
+    /// The block.
+    Block,
+    /// Each, of one half of the unbiased form (the disk named slave).
+    Both,
+}
+
 /// `data/scenes/disk_on_block.toml` with the block `ratio` times stiffer
 /// than the disk, the disk on `n`² and the block on 2n × n, and the slave
-/// either the disk (the softer body) or the block.
-fn disk_on_block(ratio: f64, n: usize, block_slave: bool, newton: bool) -> Result<String> {
+/// as `slave` says.
+fn disk_on_block(ratio: f64, n: usize, slave: Slave, newton: bool) -> Result<String> {
     let text =
         std::fs::read_to_string(companion::shipped_path("disk_on_block.toml")).map_err(|e| {
             iga_contact::Error::Io {
@@ -279,7 +295,14 @@ fn disk_on_block(ratio: f64, n: usize, block_slave: bool, newton: bool) -> Resul
             &format!("young = {:e}", 2.0e7 * ratio),
         );
     }
-    if block_slave {
+    if slave == Slave::Both {
+        text = text.replace("sides = \"biased\"", "sides = \"unbiased\"");
+        assert!(
+            text.contains("unbiased"),
+            "disk_on_block.toml names no `sides`"
+        );
+    }
+    if slave == Slave::Block {
         text = text.replace(
             "slave = \"disk\"\nslave_side = \"eta_min\"\nmaster = { body = \"block\", side = \"eta_max\" }",
             "slave = \"block\"\nslave_side = \"eta_max\"\nmaster = { body = \"disk\", side = \"eta_min\" }",
@@ -307,7 +330,7 @@ fn solved_p0(scene: &Scene) -> Result<f64> {
 fn block_references(ratios: &[f64], finest: usize) -> Result<BTreeMap<u64, f64>> {
     let mut out = BTreeMap::new();
     for &ratio in ratios {
-        let scene = Scene::from_toml_str(&disk_on_block(ratio, 2 * finest, false, false)?)?;
+        let scene = Scene::from_toml_str(&disk_on_block(ratio, 2 * finest, Slave::Disk, false)?)?;
         out.insert(ratio.to_bits(), solved_p0(&scene)?);
     }
     Ok(out)
@@ -377,17 +400,18 @@ pub fn cases() -> Result<Vec<Case>> {
     for (newton, solver) in solvers {
         for ratio in ratios {
             for n in [8, 16, 32] {
-                for block_slave in [false, true] {
+                for (slave, class, name) in [
+                    (Slave::Disk, Class::SlaveMaster, "slave disk"),
+                    (Slave::Block, Class::SlaveMaster, "slave block"),
+                    (Slave::Both, Class::Unbiased, "unbiased"),
+                ] {
                     push(
                         &mut out,
-                        Class::SlaveMaster,
-                        format!(
-                            "disk on block ×{ratio:e}, {n}², slave {}, {solver}",
-                            if block_slave { "block" } else { "disk" }
-                        ),
-                        disk_on_block(ratio, n, block_slave, newton)?,
+                        class,
+                        format!("disk on block ×{ratio:e}, {n}², {name}, {solver}"),
+                        disk_on_block(ratio, n, slave, newton)?,
                         refs[&ratio.to_bits()],
-                        if block_slave {
+                        if slave == Slave::Block {
                             Balance::LoadOnMaster
                         } else {
                             Balance::LoadOnSlave

@@ -47,6 +47,7 @@ fn main() -> Result<()> {
         Format::Fixed(1),
     )?;
     f.count("answers_cases", answered.cases)?;
+    f.count("answers_classes", answers::Class::ALL.len())?;
     f.count("answers_launches", answered.launches)?;
     f.count("answers_silent_wrong", answered.silent_wrong)?;
     f.count("answers_unclean", answered.unclean)?;
