@@ -27,7 +27,7 @@ enum Unit {
 fn unit_of(key: &str) -> Option<Unit> {
     match key {
         "center" | "radius" | "inner_radius" | "outer_radius" | "x0" | "y0" | "x1" | "y1"
-        | "corners" | "control_points" | "from" | "to" | "value" => Some(Unit::Length),
+        | "corners" | "control_points" | "from" | "to" | "value" | "point" => Some(Unit::Length),
         "young" | "pressure" | "traction" => Some(Unit::Stress),
         "force" => Some(Unit::ForcePerVolume),
         _ => None,
@@ -173,6 +173,16 @@ fn a_disk_on_a_block_is_the_same_in_any_units() {
     sweep("disk_on_block.toml", None);
 }
 
+/// Bodies of several patches, a slave boundary over patches, point
+/// supports (the patch corner nearest a point, found to a tolerance
+/// relative to the body's size) and the Lagrange mesh.
+#[test]
+fn multi_patch_bodies_point_supports_and_lagrange_meshes_are_the_same_in_any_units() {
+    sweep("hertz_multipatch.toml", None);
+    sweep("disk_full.toml", None);
+    sweep("hertz_fem_q2.toml", None);
+}
+
 #[test]
 fn two_cylinders_are_the_same_in_any_units() {
     sweep("two_cylinders.toml", None);
@@ -192,4 +202,23 @@ fn a_block_pressed_down_is_the_same_in_any_units() {
 fn every_key_is_the_same_in_any_units() {
     sweep("every_key.toml", None);
     sweep("minimal.toml", None);
+}
+
+/// The chapter "Reliability" says each shipped scene is swept: a scene
+/// added to `data/scenes/` without a sweep here fails this test.
+#[test]
+fn every_shipped_scene_is_swept() {
+    let source = include_str!("scale.rs");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if name.ends_with(".toml") && !source.contains(&format!("sweep(\"{name}\"")) {
+            missing.push(name);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "shipped scenes with no sweep: {missing:?}"
+    );
 }
