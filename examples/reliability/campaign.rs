@@ -2,7 +2,10 @@
 //! at every extreme of the documented limits, given to `check` and `run`,
 //! every outcome counted.
 
-use crate::harness::{body_scene, launch, mesh, refine, Launch, Outcome, ALL_OUTPUTS, SHAPES};
+use crate::harness::{
+    body_scene, launch, mesh, multipatch_scene, refine, Launch, Outcome, ALL_OUTPUTS,
+    MULTIPATCH_SHAPES, SHAPES,
+};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -33,6 +36,23 @@ pub fn refinements() -> Vec<(String, String)> {
             out.push((format!("Q{q}, {}", mesh(e)), r));
         }
     }
+    out
+}
+
+/// The refinements of the multi-patch bodies, whose patches each take the
+/// mesh (five of them for the full disk): degrees 2 and 5 on the extreme
+/// square meshes, and a Lagrange mesh, which they refuse.
+pub fn multipatch_refinements() -> Vec<(String, String)> {
+    let mut out = vec![("as given".to_string(), String::new())];
+    for p in [2, 5] {
+        for e in [[1, 1], [64, 64], [4096, 4096]] {
+            out.push((format!("p = {p}, {}", mesh(e)), refine(p, e)));
+        }
+    }
+    out.push((
+        "Q2, 64²".to_string(),
+        "refine = { lagrange = 2, elements = [64, 64] }".to_string(),
+    ));
     out
 }
 
@@ -190,6 +210,16 @@ pub fn run(work: &Path) -> Tally {
                 scenes.push((
                     format!("{shape}, {rl}, {ol}"),
                     body_scene("campaign", g, &r, "", &o),
+                ));
+            }
+        }
+    }
+    for shape in &MULTIPATCH_SHAPES {
+        for (rl, r) in multipatch_refinements() {
+            for (ol, o) in output_sets() {
+                scenes.push((
+                    format!("{}, {rl}, {ol}", shape.name),
+                    multipatch_scene("campaign", shape, &r, &o),
                 ));
             }
         }

@@ -25,7 +25,7 @@ use companion::harness;
 
 use companion::chapter::Chapter;
 use companion::timing::{median_time, Machine};
-use harness::{body_scene, commit, launch, mesh, refine, Launch, SHAPES};
+use harness::{body_scene, commit, launch, mesh, refine, Launch, MULTIPATCH_SHAPES, SHAPES};
 use iga_contact::post::contact_resultant;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{Scene, MAX_DEGREE, MAX_ELEMENTS};
@@ -440,6 +440,11 @@ fn main() -> Result<()> {
     f.timed_number("campaign_timeout", campaign::TIMEOUT, Format::Fixed(0))?;
     f.count("campaign_shapes", SHAPES.len())?;
     f.count("campaign_refinements", campaign::refinements().len())?;
+    f.count("campaign_multipatch_shapes", MULTIPATCH_SHAPES.len())?;
+    f.count(
+        "campaign_multipatch_refinements",
+        campaign::multipatch_refinements().len(),
+    )?;
     f.count("campaign_output_sets", campaign::output_sets().len())?;
     f.count("campaign_extremes", tally.extremes)?;
     let extremes: Vec<String> = campaign::extremes().into_iter().map(|(l, _)| l).collect();

@@ -212,6 +212,83 @@ pub const SHAPES: [(&str, &str); 5] = [
 /// One body resting on a rigid floor under its weight, held sideways on
 /// `xi_min`.
 pub fn body_scene(title: &str, geometry: &str, refine: &str, extra: &str, output: &str) -> String {
+    floor_scene(
+        title,
+        geometry,
+        refine,
+        extra,
+        &support("side = \"xi_min\""),
+        "slave_side = \"eta_min\"",
+        output,
+    )
+}
+
+/// A body of several patches for the campaign: it names boundaries, not
+/// sides, and a full disk is held by points.
+pub struct MultiPatchShape {
+    pub name: &'static str,
+    pub geometry: &'static str,
+    /// Where it is held in x: `boundary = …` or `point = …` lines, one
+    /// support each.
+    pub held: &'static [&'static str],
+    /// The boundary that rests on the floor.
+    pub slave: &'static str,
+}
+
+/// The multi-patch geometries of the campaign: the half disk of four
+/// patches on its symmetry line, and the full disk of five held at two
+/// points of its vertical centre line (as the shipped `disk_full.toml`).
+pub const MULTIPATCH_SHAPES: [MultiPatchShape; 2] = [
+    MultiPatchShape {
+        name: "half disk of 4 patches",
+        geometry: "{ half_disk_4 = { center = [0.0, 0.2], radius = 0.2 } }",
+        held: &["boundary = \"straight\""],
+        slave: "arc_lower",
+    },
+    MultiPatchShape {
+        name: "disk of 5 patches",
+        geometry: "{ disk_5 = { center = [0.0, 0.2], radius = 0.2, layout = \"diagonal\" } }",
+        held: &["point = [0.0, 0.31313708498984763]", "point = [0.0, 0.4]"],
+        slave: "arc_lower",
+    },
+];
+
+/// [`body_scene`] for a body of several patches.
+pub fn multipatch_scene(
+    title: &str,
+    shape: &MultiPatchShape,
+    refine: &str,
+    output: &str,
+) -> String {
+    let held: String = shape.held.iter().map(|h| support(h)).collect();
+    floor_scene(
+        title,
+        shape.geometry,
+        refine,
+        "",
+        &held,
+        &format!("slave_boundary = \"{}\"", shape.slave),
+        output,
+    )
+}
+
+/// A `[[support]]` of body `b` in x, at `at` (a `side`, `boundary` or
+/// `point` line).
+fn support(at: &str) -> String {
+    format!("[[support]]\nbody = \"b\"\n{at}\ncomponent = \"x\"\n\n")
+}
+
+/// Body `b` on a rigid floor under its weight, with its supports and the
+/// key of its slave side or boundary.
+fn floor_scene(
+    title: &str,
+    geometry: &str,
+    refine: &str,
+    extra: &str,
+    supports: &str,
+    slave: &str,
+    output: &str,
+) -> String {
     format!(
         r#"title = "{title}"
 [[body]]
@@ -220,17 +297,12 @@ geometry = {geometry}
 {refine}
 material = {{ young = 2.0e7, poisson = 0.3, plane = "strain" }}
 {extra}
-[[support]]
-body = "b"
-side = "xi_min"
-component = "x"
-
-[[load]]
+{supports}[[load]]
 body_force = {{ body = "b", force = [0.0, -1.3e6] }}
 
 [[contact]]
 slave = "b"
-slave_side = "eta_min"
+{slave}
 master = {{ rigid_segment = {{ from = [-2.0, 0.0], to = [2.0, 0.0] }} }}
 
 {output}"#
