@@ -8,20 +8,34 @@
 //!   it (one element), its control net and weights;
 //! - `half_disk_net_p2.svg`: the same disk k-refined to p = 2 with 2 × 2
 //!   elements, the way the Hertz benchmark refines it;
+//! - `disk_5_net.svg`: the disk as five patches without a singular point
+//!   (`geometry::disk_5`, the Hertz disk's centre and radius): each patch's
+//!   boundary, control net and parametric directions, and the weights;
+//! - `half_disk_4_net.svg`: the half disk of four patches as
+//!   `hertz_multipatch.toml` builds it (`geometry::half_disk_4`), drawn the
+//!   same way;
 //! - `contact_sketch.svg`: slave points of that half disk, lifted above a
 //!   curved rigid master, projected onto it by the contact code: slave point,
-//!   projection, normals and gap of Eqs. (4)–(5).
+//!   projection, normals and gap of Eqs. (4)–(5);
+//!
+//! and the facts the chapter quotes about the two bodies of several patches:
+//! how many patches, control points (all, and distinct: matching
+//! interfaces share theirs) and matching interfaces, the range of the
+//! weights, and |det J| sampled densely over every patch, corners included.
 //!
 //! ```text
 //! cargo run --release --example formulation
 //! ```
 
 use companion::chapter::Chapter;
-use companion::figures::{basis_figure, contact_sketch, control_net_figure};
+use companion::facts::Facts;
+use companion::figures::{basis_figure, contact_sketch, control_net_figure, multipatch_figure};
 use iga_contact::contact::{contact_points, ContactPair, Integration, Master};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry;
-use iga_contact::nurbs::{KnotVector, NurbsCurve, Side};
+use iga_contact::interface::{self, Interface};
+use iga_contact::nurbs::{KnotVector, NurbsCurve, NurbsPatch, Side};
+use iga_contact::report::table::Format;
 use iga_contact::scene::{GeometrySpec, RefineSpec};
 use iga_contact::space::Space;
 use std::process::ExitCode;
@@ -39,8 +53,103 @@ fn arc(c: [f64; 2], r: f64, from: f64, to: f64) -> iga_contact::Result<NurbsCurv
     )
 }
 
+/// Parameter samples per direction and patch for the extremes of det J:
+/// both ends included, so the corners, where a one-patch disk is singular,
+/// are among them.
+const DET_SAMPLES: usize = 201;
+
+/// Records, under `prefix`, what the chapter says of a body of several
+/// patches: patches, control points (all and distinct), matching
+/// interfaces, the smallest and largest weight, how many patches are
+/// left-handed, and min |det J| over its largest value.
+fn multipatch_facts(
+    facts: &mut Facts,
+    prefix: &str,
+    patches: &[NurbsPatch],
+) -> iga_contact::Result<()> {
+    let key = |name: &str| format!("{prefix}_{name}");
+    let all: Vec<[f64; 2]> = patches.iter().flat_map(|p| p.points.clone()).collect();
+    let size = patches.iter().map(interface::extent).fold(0.0, f64::max);
+    let mut distinct: Vec<[f64; 2]> = Vec::new();
+    for p in &all {
+        if !distinct
+            .iter()
+            .any(|q| (p[0] - q[0]).hypot(p[1] - q[1]) <= 1e-12 * size)
+        {
+            distinct.push(*p);
+        }
+    }
+    let mut interfaces = 0;
+    for (a, pa) in patches.iter().enumerate() {
+        for pb in &patches[a + 1..] {
+            for sa in Side::ALL {
+                for sb in Side::ALL {
+                    if let Interface::Matching(_) = interface::matching(pa, sa, pb, sb, size) {
+                        interfaces += 1;
+                    }
+                }
+            }
+        }
+    }
+    let weights = || patches.iter().flat_map(|p| p.weights.iter().copied());
+    let (mut det_min, mut det_max, mut left) = (f64::INFINITY, 0.0f64, 0);
+    for patch in patches {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let at = |d: usize, k: usize| {
+            let kv = &patch.knots[d];
+            kv.first() + (kv.last() - kv.first()) * k as f64 / (DET_SAMPLES - 1) as f64
+        };
+        for i in 0..DET_SAMPLES {
+            for j in 0..DET_SAMPLES {
+                let m = patch.jacobian(at(0, i), at(1, j));
+                let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+                lo = lo.min(det);
+                hi = hi.max(det);
+            }
+        }
+        // one sign over the whole patch, or the map folds or degenerates
+        if lo <= 0.0 && hi >= 0.0 {
+            return Err(iga_contact::Error::invalid(
+                prefix,
+                format!("det J from {lo} to {hi}"),
+                "changes sign or vanishes on a patch",
+            ));
+        }
+        if hi < 0.0 {
+            left += 1;
+            (lo, hi) = (-hi, -lo);
+        }
+        det_min = det_min.min(lo);
+        det_max = det_max.max(hi);
+    }
+    facts.count(&key("patches"), patches.len())?;
+    facts.count(&key("points"), all.len())?;
+    facts.count(&key("distinct_points"), distinct.len())?;
+    facts.count(&key("interfaces"), interfaces)?;
+    facts.count(&key("left_handed"), left)?;
+    facts.number(
+        &key("w_min"),
+        weights().fold(f64::INFINITY, f64::min),
+        Format::Fixed(4),
+    )?;
+    facts.number(
+        &key("w_max"),
+        weights().fold(0.0, f64::max),
+        Format::Fixed(4),
+    )?;
+    facts.number(&key("det_ratio"), det_min / det_max, Format::Fixed(3))?;
+    println!(
+        "{prefix}: {} patches, {} control points ({} distinct), {interfaces} matching interfaces, \
+         {left} left-handed, |det J| from {det_min:.4e} to {det_max:.4e} m²",
+        patches.len(),
+        all.len(),
+        distinct.len()
+    );
+    Ok(())
+}
+
 fn run() -> iga_contact::Result<()> {
-    let chapter = Chapter::from_args("formulation")?;
+    let mut chapter = Chapter::from_args("formulation")?;
     let out = |file: &str| chapter.path(file);
 
     let knots = KnotVector::new(vec![0.0, 0.0, 0.0, 0.25, 0.5, 0.5, 1.0, 1.0, 1.0], 2)?;
@@ -80,6 +189,28 @@ fn run() -> iga_contact::Result<()> {
         out("half_disk_net_p2.svg"),
         "k-refined to p = 2 with 2 × 2 elements",
         &refined,
+    )?;
+
+    // The bodies of several patches: the half disk as the multi-patch Hertz
+    // scene builds it, and the five-patch disk it is the right half of.
+    let multi = companion::shipped("hertz_multipatch.toml")?;
+    let spec = &multi.bodies[0].geometry;
+    let GeometrySpec::HalfDisk4 { center, radius } = *spec else {
+        unreachable!("the multi-patch Hertz scene is a four-patch half disk")
+    };
+    let half_4 = spec
+        .multipatch()
+        .expect("half_disk_4 is a multi-patch kind")?;
+    let disk_5 = geometry::disk_5(center, radius)?;
+    multipatch_figure(
+        out("disk_5_net.svg"),
+        "The disk as five patches: boundaries, control nets, weights",
+        &disk_5.patches,
+    )?;
+    multipatch_figure(
+        out("half_disk_4_net.svg"),
+        "The half disk as four patches (hertz_multipatch.toml)",
+        &half_4.patches,
     )?;
 
     // The same half disk, lifted 15 % of its radius above a rigid master that
@@ -122,6 +253,9 @@ fn run() -> iga_contact::Result<()> {
         cp.normal[1],
         cp.g0
     );
+    multipatch_facts(chapter.facts(), "disk5", &disk_5.patches)?;
+    multipatch_facts(chapter.facts(), "half4", &half_4.patches)?;
+    chapter.facts().count("det_samples", DET_SAMPLES)?;
     println!("written to {}", chapter.dir().display());
     chapter.finish()
 }

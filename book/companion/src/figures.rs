@@ -1,14 +1,17 @@
 //! Figures of the formulation chapters: the NURBS basis functions of a knot
-//! vector, a control net with its weights, and a sketch of the contact
-//! geometry (slave point, closest-point projection, normals and gap) drawn
-//! from the contact code itself.
+//! vector, a control net with its weights (of one patch, or of the patches
+//! of one body), and a sketch of the contact geometry (slave point,
+//! closest-point projection, normals and gap) drawn from the contact code
+//! itself.
 //!
-//! They are described with the public API of [`iga_contact::report::plot`] only
-//! (annotated geometry figures and charts of their own), so that this module
-//! does not depend on how plots are laid out or drawn.
+//! They are described with the public API of [`iga_contact::report::plot`]
+//! and the control nets of [`iga_contact::report::drawing`] only (annotated
+//! geometry figures and charts of their own), so that this module does not
+//! depend on how plots are laid out or drawn.
 
 use iga_contact::contact::ContactPoint;
 use iga_contact::nurbs::{KnotVector, NurbsCurve, NurbsPatch};
+use iga_contact::report::drawing::{control_net, labelled};
 use iga_contact::report::plot::{
     annotated_figure, chart, typographic_minus, Bounds, Chart, ChartLine, Color, Label, LabelSide,
     LegendEntry, LineKind, Polyline, Stroke, BLACK_INDEX,
@@ -192,6 +195,64 @@ pub fn basis_figure(
 // Control net
 // ---------------------------------------------------------------------------
 
+/// The control polygon of `patch`, its rows and columns, dashed with a
+/// marker at each control point, in palette colour `color`.
+fn net_lines(patch: &NurbsPatch, color: usize, label: &str) -> Vec<Polyline> {
+    labelled(control_net(patch, color), label)
+}
+
+/// The weight of each control point written beside it, away from
+/// `centre` so that the text sits outside the net's lines where possible.
+/// A point that several patches share (with one weight) is labelled once.
+fn weight_labels<'a>(
+    points: impl IntoIterator<Item = (&'a [f64; 2], &'a f64)>,
+    centre: [f64; 2],
+    color: usize,
+) -> Vec<Label> {
+    let mut seen: Vec<([f64; 2], f64)> = Vec::new();
+    let mut labels = Vec::new();
+    for (&p, &w) in points {
+        // shared points coincide to round-off (matching interfaces copy them)
+        let same = |(q, v): &([f64; 2], f64)| {
+            (p[0] - q[0]).hypot(p[1] - q[1]) <= 1e-12 * (1.0 + p[0].hypot(p[1]))
+                && (w - v).abs() <= 1e-12
+        };
+        if seen.iter().any(same) {
+            continue;
+        }
+        seen.push((p, w));
+        let side = side_toward([p[0] - centre[0], p[1] - centre[1]]);
+        labels.push(Label::new(p, short(w), side).colored(color));
+    }
+    labels
+}
+
+/// The side of a point a label goes to so that it lies in direction `d`
+/// from the point (the nearer axis decides).
+fn side_toward(d: [f64; 2]) -> LabelSide {
+    if d[0].abs() >= d[1].abs() {
+        if d[0] >= 0.0 {
+            LabelSide::Right
+        } else {
+            LabelSide::Left
+        }
+    } else if d[1] >= 0.0 {
+        LabelSide::Above
+    } else {
+        LabelSide::Below
+    }
+}
+
+/// The mean of `points`.
+fn centroid<'a>(points: impl IntoIterator<Item = &'a [f64; 2]>) -> [f64; 2] {
+    let (mut c, mut n) = ([0.0, 0.0], 0.0);
+    for p in points {
+        c = [c[0] + p[0], c[1] + p[1]];
+        n += 1.0;
+    }
+    [c[0] / n, c[1] / n]
+}
+
 /// The body of `patch` with its element boundaries (knot lines), its control
 /// net, and the weight of every control point written beside it.
 pub fn control_net_figure(path: impl AsRef<Path>, title: &str, patch: &NurbsPatch) -> Result<()> {
@@ -205,42 +266,90 @@ pub fn control_net_figure(path: impl AsRef<Path>, title: &str, patch: &NurbsPatc
             );
         }
     }
-    let [n0, n1] = patch.n();
-    let row = |j: usize| (0..n0).map(|i| patch.points[patch.index(i, j)]).collect();
-    let col = |i: usize| (0..n1).map(|j| patch.points[patch.index(i, j)]).collect();
-    for j in 0..n1 {
-        lines.push(Polyline::new(row(j), LineKind::ControlNet, 3).labelled("control net"));
+    lines.extend(net_lines(patch, 3, "control net"));
+    let centre = centroid(&patch.points);
+    let labels = weight_labels(patch.points.iter().zip(&patch.weights), centre, 3);
+    annotated_figure(path, title, &lines, &labels)
+}
+
+/// The patches of one body, each in its own colour: its boundary (the
+/// exact curves, sampled), its control net, and arrows along ξ and η
+/// near its corner (ξ, η) = (0, 0), labelled with the patch's index; the
+/// weight of every control point beside it, in black, once where patches
+/// share the point. A side two patches share is one curve: it shows the
+/// colour of the lower index, so that the first patch (a core, which
+/// touches only other patches) keeps its outline.
+pub fn multipatch_figure(
+    path: impl AsRef<Path>,
+    title: &str,
+    patches: &[NurbsPatch],
+) -> Result<()> {
+    const SEGMENTS: usize = 96;
+    // Where the arrows start, as a share of each parameter range: off the
+    // corner, so that the arrows of patches meeting there stay apart, and
+    // short of the middle of the side, where the weights are written.
+    const INSET: [f64; 2] = [0.12, 0.25];
+    let all = || patches.iter().flat_map(|p| p.points.iter());
+    let (Some(bx), Some(by)) = (
+        Bounds::of(all().map(|p| p[0])),
+        Bounds::of(all().map(|p| p[1])),
+    ) else {
+        return Err(Error::invalid("patches", "none", "nothing to draw"));
+    };
+    let len = 0.05 * bx.span().max(by.span());
+    let mut lines = Vec::new();
+    let mut labels = Vec::new();
+    // The arrows first: they carry the legend's entry of their patch.
+    for (k, patch) in patches.iter().enumerate() {
+        let color = k % 10;
+        let name = format!("patch {k}");
+        let at = |dir: usize| {
+            let kv = &patch.knots[dir];
+            kv.first() + INSET[dir] * (kv.last() - kv.first())
+        };
+        let (xi, eta) = (at(0), at(1));
+        let tail = patch.point(xi, eta);
+        let j = patch.jacobian(xi, eta);
+        for (dir, symbol) in [(0, "ξ"), (1, "η")] {
+            let t = [j[0][dir], j[1][dir]];
+            let norm = t[0].hypot(t[1]);
+            if !(norm.is_finite() && norm > 0.0) {
+                return Err(Error::invalid(
+                    format!("patches[{k}]"),
+                    format!("∂x/∂{symbol} = {t:?} at ({xi}, {eta})"),
+                    "the map degenerates next to the corner (0, 0)",
+                ));
+            }
+            let d = [t[0] / norm, t[1] / norm];
+            lines.extend(arrow(tail, d, len, color, Some(&name)));
+            let tip = [tail[0] + len * d[0], tail[1] + len * d[1]];
+            let text = format!("{symbol}{}", subscript(k));
+            labels.push(Label::new(tip, text, side_toward(d)).colored(color));
+        }
     }
-    for i in 0..n0 {
-        lines.push(Polyline::new(col(i), LineKind::ControlNet, 3).labelled("control net"));
+    for (k, patch) in patches.iter().enumerate().rev() {
+        for dir in 0..2 {
+            let kv = &patch.knots[dir];
+            for c in [kv.first(), kv.last()] {
+                let side = patch.iso_curve(dir, c, SEGMENTS);
+                lines.push(Polyline::new(side, LineKind::Solid, k % 10));
+            }
+        }
     }
-    // Labels go away from the body's centre so that they sit outside the
-    // net's lines where possible.
-    let n = patch.points.len() as f64;
-    let centre = patch
-        .points
-        .iter()
-        .fold([0.0, 0.0], |c, p| [c[0] + p[0] / n, c[1] + p[1] / n]);
-    let labels: Vec<Label> = patch
-        .points
-        .iter()
-        .zip(&patch.weights)
-        .map(|(&p, &w)| {
-            let (dx, dy) = (p[0] - centre[0], p[1] - centre[1]);
-            let side = if dx.abs() >= dy.abs() {
-                if dx >= 0.0 {
-                    LabelSide::Right
-                } else {
-                    LabelSide::Left
-                }
-            } else if dy >= 0.0 {
-                LabelSide::Above
-            } else {
-                LabelSide::Below
-            };
-            Label::new(p, short(w), side).colored(3)
-        })
-        .collect();
+    for (k, patch) in patches.iter().enumerate() {
+        lines.extend(net_lines(patch, k % 10, "control nets"));
+    }
+    let centre = centroid(all());
+    let weights = patches.iter().flat_map(|p| p.points.iter().zip(&p.weights));
+    for mut label in weight_labels(weights, centre, BLACK_INDEX) {
+        // Beside a point at the left or right end of the net the text
+        // would run into the frame (labels do not widen the plot): above.
+        let end = |v: f64, b: Bounds| (v - b.lo).min(b.hi - v) <= 1e-9 * b.span();
+        if matches!(label.side, LabelSide::Left | LabelSide::Right) && end(label.at[0], bx) {
+            label.side = LabelSide::Above;
+        }
+        labels.push(label);
+    }
     annotated_figure(path, title, &lines, &labels)
 }
 
@@ -250,7 +359,13 @@ pub fn control_net_figure(path: impl AsRef<Path>, title: &str, patch: &NurbsPatc
 
 /// An arrow from `tail` along `dir` (unit) of length `len`, as a shaft and
 /// a two-stroke head.
-fn arrow(tail: [f64; 2], dir: [f64; 2], len: f64, color: usize, label: &str) -> Vec<Polyline> {
+fn arrow(
+    tail: [f64; 2],
+    dir: [f64; 2],
+    len: f64,
+    color: usize,
+    label: Option<&str>,
+) -> Vec<Polyline> {
     let head = [tail[0] + len * dir[0], tail[1] + len * dir[1]];
     let back = 0.22 * len;
     let barb = |s: f64| {
@@ -258,8 +373,12 @@ fn arrow(tail: [f64; 2], dir: [f64; 2], len: f64, color: usize, label: &str) -> 
         let d = [-(c * dir[0] - sn * dir[1]), -(sn * dir[0] + c * dir[1])];
         [head[0] + back * d[0], head[1] + back * d[1]]
     };
+    let shaft = Polyline::new(vec![tail, head], LineKind::Solid, color);
     vec![
-        Polyline::new(vec![tail, head], LineKind::Solid, color).labelled(label),
+        match label {
+            Some(label) => shaft.labelled(label),
+            None => shaft,
+        },
         Polyline::new(vec![barb(1.0), head, barb(-1.0)], LineKind::Solid, color),
     ]
 }
@@ -320,8 +439,8 @@ pub fn contact_sketch(
         lines.push(Polyline::new(vec![p.x, foot(p)], LineKind::Thin, 7).labelled("projections"));
     }
     lines.push(Polyline::new(vec![x1, x2], LineKind::Dashed, BLACK_INDEX).labelled("gap g₀"));
-    lines.extend(arrow(x1, n1, len, 3, "n¹ = −n²"));
-    lines.extend(arrow(x2, n2, len, 2, "n² (master, outward)"));
+    lines.extend(arrow(x1, n1, len, 3, Some("n¹ = −n²")));
+    lines.extend(arrow(x2, n2, len, 2, Some("n² (master, outward)")));
     lines.push(Polyline::new(vec![x1], LineKind::ControlNet, BLACK_INDEX));
     lines.push(Polyline::new(vec![x2], LineKind::ControlNet, BLACK_INDEX));
     let mid = [0.5 * (x1[0] + x2[0]), 0.5 * (x1[1] + x2[1])];
