@@ -130,7 +130,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "hertz.md",
-        "Every chapter of this book measures it with one estimator",
+        "Every chapter of this book measures our own solutions with one estimator",
         "a convention of the book's programs (they all call iga_contact::post), not a measured result",
     ),
     (
