@@ -20,7 +20,7 @@
 import fs from "node:fs";
 import path from "node:path";
 import { createRequire } from "node:module";
-import { transform, lineOf } from "./scan.mjs";
+import { lineOf, stripAnchors, transform } from "./scan.mjs";
 import { ApiIndex } from "./api.mjs";
 
 const require = createRequire(import.meta.url);
@@ -102,7 +102,7 @@ function main() {
     const where = ch.source_path ?? ch.path ?? ch.name;
     const depth = ch.path ? ch.path.split("/").length - 1 : 0;
     const root = "../".repeat(depth);
-    const src = ch.content;
+    const src = stripAnchors(ch.content);
     const fail = (offset, msg) => errors.push(`${where}:${lineOf(src, offset)}: ${msg}`);
 
     const link = (text, target, offset) => {

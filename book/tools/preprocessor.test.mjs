@@ -6,7 +6,7 @@ import os from "node:os";
 import path from "node:path";
 import { spawnSync } from "node:child_process";
 import { fileURLToPath } from "node:url";
-import { transform } from "./scan.mjs";
+import { stripAnchors, transform } from "./scan.mjs";
 import { ApiIndex } from "./api.mjs";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -150,4 +150,9 @@ test("inline code naming exactly one item links to it; other code stays code", (
       "[`solve()`](../api/demo/solver/fn.solve.html), `Options`, `tol = 1`, `nope`, " +
       "[`Mesh`](../api/demo/other/struct.Mesh.html).\n",
   );
+});
+
+test("anchor lines of whole-file includes are removed, nothing else", () => {
+  const src = "```rust\n// ANCHOR: all\nfn main() {}\n    // ANCHOR_END: all\n# ANCHOR: top\nlet x = 1; // ANCHOR in a comment stays\n```\n";
+  assert.equal(stripAnchors(src), "```rust\nfn main() {}\nlet x = 1; // ANCHOR in a comment stays\n```\n");
 });

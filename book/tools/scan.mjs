@@ -158,3 +158,11 @@ export function lineOf(src, offset) {
   for (let j = 0; j < offset && j < src.length; j++) if (src[j] === "\n") line++;
   return line;
 }
+
+/// Removes mdBook's anchor lines (`// ANCHOR: name`, `# ANCHOR_END: name`)
+/// from `src`. mdBook drops them from an include by anchor, but not from an
+/// include of a whole file, so the chapters' "plain program" listings would
+/// show them.
+export function stripAnchors(src) {
+  return src.replace(/^[ \t]*(?:\/\/|#)[ \t]*ANCHOR(?:_END)?:[ \t]*\w+[ \t]*\r?\n/gm, "");
+}
