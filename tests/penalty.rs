@@ -327,3 +327,54 @@ fn the_stability_bound_holds_on_real_elements() {
         assert!(s >= 0.5, "{mesh:?}: {s}");
     }
 }
+
+/// At degree 6 and 7 the element's B-splines that barely reach into it
+/// make its stiffness badly scaled; the trace constant is computed after
+/// a Jacobi scaling, so it stays finite and close to the C_T ∝ p² trend of
+/// lower degrees, the empirical penalty on Hertz 8² is judged above its
+/// bound (no warning), and the sharp penalty is accepted. (Without the
+/// scaling, every point had C_T = ∞: a warning "γ/bound 0.000" whose
+/// advice, the sharp penalty, was refused.)
+#[test]
+fn the_trace_constant_is_finite_at_degrees_six_and_seven() {
+    let per_p2 = |p: usize| {
+        let problem = companion::shipped("hertz.toml")
+            .unwrap()
+            .refined("disk", RefineSpec::iga(p, [8, 8]))
+            .unwrap()
+            .build()
+            .unwrap();
+        let c = problem.points[0].trace_constant;
+        assert!(c.is_finite() && c > 0.0, "p = {p}: C_T = {c}");
+        assert!(
+            problem
+                .points
+                .iter()
+                .filter(|cp| cp.regular)
+                .all(|cp| cp.trace_constant.is_finite()),
+            "p = {p}"
+        );
+        (c / (p * p) as f64, problem)
+    };
+    let (base, _) = per_p2(5);
+    for p in [6, 7] {
+        let (c, problem) = per_p2(p);
+        // the p² trend of the penalty chapter, within a factor 2
+        assert!(
+            (0.5..2.0).contains(&(c / base)),
+            "p = {p}: C_T/p² {c:e} against {base:e} at p = 5"
+        );
+        let s = solve(&problem, &Default::default()).unwrap();
+        assert!(!below_bound(&s.warnings), "p = {p}: {:?}", s.warnings);
+        let sharp = companion::shipped("hertz.toml")
+            .unwrap()
+            .refined("disk", RefineSpec::iga(p, [8, 8]))
+            .unwrap()
+            .with_nitsche(|n| {
+                n.penalty = PenaltyKind::Sharp;
+                n.penalty_factor = 2.0;
+            })
+            .build();
+        assert!(sharp.is_ok(), "p = {p}: {:?}", sharp.err());
+    }
+}

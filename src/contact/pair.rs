@@ -313,7 +313,20 @@ fn one_side(
             &pair.nitsche,
             pressure.as_deref(),
             &mut points[first..],
-        )?;
+        )
+        .map_err(|e| match e {
+            // the scene's key path of the contact
+            Error::InvalidInput {
+                field,
+                value,
+                reason,
+            } if field.starts_with("nitsche.") => Error::invalid(
+                format!("contact[{}].{field}", id.contact),
+                format!("{value:?}"),
+                reason,
+            ),
+            other => other,
+        })?;
     }
     Ok(())
 }

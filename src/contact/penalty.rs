@@ -63,13 +63,27 @@ pub fn trace_constant<'a>(
     points: impl IntoIterator<Item = (f64, &'a [f64])>,
 ) -> Result<f64> {
     let n = stiffness.nrows();
+    // Jacobi scaling v = D v', D = diag(K)^(-1/2): the quotient is the same
+    // in the new variables, but at high degree the element's B-splines that
+    // barely reach into it have diagonal entries 10⁻¹⁰ of the largest and
+    // more, and in the unscaled basis their tiny energies and tiny stresses
+    // are lost to round-off (at p = 6 the regularised stiffness then looks
+    // singular and the constant infinite)
+    let d: Vec<f64> = stiffness
+        .diagonal()
+        .iter()
+        .map(|&k| if k > 0.0 { 1.0 / k.sqrt() } else { 1.0 })
+        .collect();
+    let stiffness = nalgebra::DMatrix::from_fn(n, n, |i, j| d[i] * stiffness[(i, j)] * d[j]);
+    let rigid = nalgebra::DMatrix::from_fn(n, rigid.ncols(), |i, j| rigid[(i, j)] / d[i]);
     let columns: Vec<nalgebra::DVector<f64>> = points
         .into_iter()
-        .map(|(w, s)| w.sqrt() * nalgebra::DVector::from_column_slice(&s[..n]))
+        .map(|(w, s)| w.sqrt() * nalgebra::DVector::from_fn(n, |i, _| d[i] * s[i]))
         .collect();
     if columns.is_empty() {
         return Ok(0.0);
     }
+    let (stiffness, rigid) = (&stiffness, &rigid);
     let w = nalgebra::DMatrix::from_columns(&columns);
     // scale the rigid block to the stiffness so that neither swamps the other
     let scale = stiffness.diagonal().amax()

@@ -46,7 +46,7 @@ pub(super) fn set_trace_constant(
             "nitsche.penalty",
             "sharp",
             format!(
-                "element {} has modes of no energy that carry normal stress (under-integrated?), so no sharp bound exists",
+                "element {} has modes of no energy that carry normal stress (an under-integrated element, or, at degree 8 and above, round-off in the element's constant), so no sharp bound is computed: use penalty = \"empirical\" with a penalty_factor",
                 be.element
             ),
         )),
