@@ -324,6 +324,46 @@ fn locking_is_warned_and_the_advised_refinement_fixes_it() {
     .is_empty());
 }
 
+/// On a Lagrange (C⁰) mesh the displacement formulation locks as the spline
+/// one does, but `mixed` is refused there: the warning advises the local
+/// mixed formulation, Q1/P0, which does not lock on a C⁰ mesh and is not
+/// warned for it. Q1 on 32², ν = 0.49999: +71 % and warned; so set, the
+/// locking warning is gone and p₀ is right.
+#[test]
+fn locking_on_a_lagrange_mesh_advises_the_local_mixed_formulation() {
+    let q1 = |formulation: Formulation| {
+        let mut s = companion::shipped("hertz.toml")
+            .unwrap()
+            .refined("disk", RefineSpec::lagrange(1, [32, 32]))
+            .unwrap();
+        s.solver = SolverOptions::default();
+        s.output = Default::default();
+        let disk = s.body_mut("disk").unwrap();
+        disk.material.poisson = 0.49999;
+        disk.formulation = formulation;
+        s
+    };
+    let locks = |w: &[Warning]| {
+        w.iter()
+            .any(|w| matches!(w, Warning::NearlyIncompressible { .. }))
+    };
+    let (w, error) = outcome(&q1(Formulation::Displacement));
+    assert!(error > 0.3, "p₀ {error:+.4}");
+    let warning = w
+        .iter()
+        .find(|w| matches!(w, Warning::NearlyIncompressible { .. }))
+        .expect("locking warned");
+    assert!(
+        warning
+            .to_string()
+            .contains("formulation = \"local_mixed\""),
+        "{warning}"
+    );
+    let (w, error) = outcome(&q1(Formulation::LocalMixed));
+    assert!(!locks(&w), "{w:?}");
+    assert!(error.abs() < RIGHT, "p₀ {error:+.4}");
+}
+
 /// Under eight times the load (penalty factor 2, which keeps every regular
 /// element above its bound: at factor 1 the element next to the corner is
 /// just below it, and that warning comes first) the zone of the 32×32 disk

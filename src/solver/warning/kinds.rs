@@ -128,6 +128,9 @@ pub enum SlaveExtent {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LockingRemedy {
     MixedOrRefine,
+    /// On a C⁰ (Lagrange) mesh, where `mixed` is refused and `local_mixed`
+    /// does not lock.
+    LocalMixedOrRefine,
     Refine,
 }
 
@@ -436,6 +439,9 @@ impl std::fmt::Display for Warning {
                     (LockingRemedy::MixedOrRefine, _) => {
                         format!("set formulation = \"mixed\" on {body:?}, or {refine}")
                     }
+                    (LockingRemedy::LocalMixedOrRefine, _) => format!(
+                        "set formulation = \"local_mixed\" on {body:?} (on this C⁰ mesh its pressure per element does not lock), or {refine}"
+                    ),
                     (LockingRemedy::Refine, _) => format!(
                         "{refine} (every patch: the mixed formulation takes one-patch bodies only)"
                     ),

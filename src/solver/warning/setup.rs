@@ -66,9 +66,15 @@ pub fn locking(b: &Body) -> Option<Warning> {
     let nu = b.material.poisson;
     // the mixed formulation's continuous pressure does not lock (chapter
     // "Near incompressibility")
+    // nor, on a C⁰ mesh (Lagrange, interior knots repeated p times), does
+    // the local one: there it is Q1/P0, Q2/P1, …, whose pressure per element
+    // the displacement space can meet (Hertz at ν = 0.49999: Q1/P0 on 32²
+    // +0.5 %, Q2/P1 on 16² +1.3 %, against +71 % for Q1 alone)
+    let c0 = is_c0(b);
     if b.material.plane != Plane::Strain
         || nu <= LOCKING_POISSON
         || b.formulation == Formulation::Mixed
+        || (b.formulation == Formulation::LocalMixed && c0)
     {
         return None;
     }
@@ -84,7 +90,11 @@ pub fn locking(b: &Body) -> Option<Warning> {
         elements: (lambda_over_mu / LOCKING).cbrt().ceil() as usize,
         // one patch as far as this body knows; `setup_warnings` sees the
         // other patches of its name
-        remedy: LockingRemedy::MixedOrRefine,
+        remedy: if c0 {
+            LockingRemedy::LocalMixedOrRefine
+        } else {
+            LockingRemedy::MixedOrRefine
+        },
     })
 }
 
@@ -142,4 +152,13 @@ pub(super) fn defer_penalty_to_locking(
         let slave = &bodies[pairs[contacts.pieces(contact).start].slave].name;
         !locked.contains(slave)
     });
+}
+
+/// Whether body `b`'s displacement space is only C⁰ across its elements
+/// (every interior knot repeated as often as the degree): a Lagrange mesh.
+fn is_c0(b: &Body) -> bool {
+    b.space.patch.knots.iter().all(|k| {
+        let m = k.multiplicities();
+        m.len() <= 2 || m[1..m.len() - 1].iter().all(|&r| r >= k.degree())
+    })
 }
