@@ -296,10 +296,12 @@ impl Warning {
     }
 }
 
-fn counted_words(c: Counted) -> &'static str {
-    match c {
-        Counted::Solution => "active points",
-        Counted::FirstTouch => "points where the bodies first touch",
+fn counted_words(c: Counted, n: usize) -> &'static str {
+    match (c, n) {
+        (Counted::Solution, 1) => "active point",
+        (Counted::Solution, _) => "active points",
+        (Counted::FirstTouch, 1) => "point where the bodies first touch",
+        (Counted::FirstTouch, _) => "points where the bodies first touch",
     }
 }
 
@@ -343,16 +345,25 @@ impl std::fmt::Display for Warning {
                 counted,
                 remedy,
             } => {
-                write!(
-                    f,
-                    "contact[{contact}]: {below} of the {active} {} {} a penalty below the stability bound of their element",
-                    counted_words(*counted),
-                    if *below == 1 { "has" } else { "have" }
-                )?;
+                let points = counted_words(*counted, *active);
+                if *below == 0 {
+                    write!(
+                        f,
+                        "contact[{contact}]: none of the {active} {points} has a penalty below the stability bound of its element, but"
+                    )?;
+                } else {
+                    write!(
+                        f,
+                        "contact[{contact}]: {below} of the {active} {points} {} a penalty below the stability bound of {} element",
+                        if *below == 1 { "has" } else { "have" },
+                        if *below == 1 { "its" } else { "their" }
+                    )?;
+                }
                 if *inactive_below > 0 {
                     write!(
                         f,
-                        ", and {inactive_below} other {} below θ·C_T, which θ > 0 needs at every point",
+                        "{} {inactive_below} other {} below θ·C_T, which θ > 0 needs at every point",
+                        if *below == 0 { "" } else { ", and" },
                         if *inactive_below == 1 { "point lies" } else { "points lie" }
                     )?;
                 }
@@ -374,9 +385,10 @@ impl std::fmt::Display for Warning {
                 remedy,
             } => write!(
                 f,
-                "contact[{contact}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of their element (largest γ/bound {max_ratio:.3}); above that ratio the peak pressure was measured to grow with the penalty: {}",
-                counted_words(*counted),
+                "contact[{contact}]: {over} of the {active} {} {} a penalty over {OVER_PENALTY} times the θ = 0 stability bound of {} element (largest γ/bound {max_ratio:.3}); above that ratio the peak pressure was measured to grow with the penalty: {}",
+                counted_words(*counted, *active),
                 if *over == 1 { "has" } else { "have" },
+                if *over == 1 { "its" } else { "their" },
                 remedy_words(*contact, *remedy)
             ),
             Warning::PenaltyLoose {
@@ -389,7 +401,7 @@ impl std::fmt::Display for Warning {
                 f,
                 "contact[{contact}]: θ = -1 with a penalty down to {} times the θ = 0 stability bound at its {active} {}, which holds the gap too loosely for an accurate p₀ on a coarse mesh: {}",
                 round2(*min_ratio),
-                counted_words(*counted),
+                counted_words(*counted, *active),
                 remedy_words(*contact, *remedy)
             ),
             Warning::StifferSlave {
