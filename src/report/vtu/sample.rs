@@ -3,14 +3,17 @@
 //!
 //! Two kinds of points need care. At the corners of the nine-point disk the
 //! exact map is singular (det J = 0, up to rounding), but only the
-//! parameterisation is: the fields are smooth there, and a nudge of 1e-6
-//! element sizes gives them to about 1e-9. The isoparametric Lagrange
-//! interpolant of that disk instead folds in a sliver at those corners
-//! (det J < 0 within about 1.4 % of an element of the corner for Q2 on
-//! 8 × 8): there the gradients of the discrete field grow like 1 / det J
-//! towards the fold line, so the strain is taken well inside the regular
-//! part, while the point drawn and its displacement stay at the requested
-//! point (neither needs J⁻¹), so the grid stays closed.
+//! parameterisation is: an exact field is smooth there, yet the gradients
+//! of the discrete solution grow like 1 / det J towards the corner (as the
+//! normal stress of the corner element does in the penalty chapter); a
+//! sample 1e-6 element sizes inside gave von Mises stresses 10³ times the
+//! peak contact pressure on the shipped Hertz run. The isoparametric
+//! Lagrange interpolant of that disk instead folds in a sliver at those
+//! corners (det J < 0 within about 1.4 % of an element of the corner for
+//! Q2 on 8 × 8), with the same growth towards the fold line. In both cases
+//! the strain is taken well inside the regular part, while the point drawn
+//! and its displacement stay at the requested point (neither needs J⁻¹), so
+//! the grid stays closed.
 //!
 //! Every sample falls back, at worst, on the element's [`Anchor`], a point
 //! where the map is regular. On a mesh the solver accepted the element
@@ -22,27 +25,15 @@ use crate::error::{GeometryError, Result};
 use crate::quadrature;
 use crate::space::{Element, Shape, Space};
 
-/// Relative inward nudges tried, in order, where the geometric map is
-/// singular. A nudge δ trades two errors: the point moves by δ·h, and the
-/// gradients, divided by det J ∝ δ, lose about 1e-15/δ relative accuracy
-/// (measured at the half-disk corners: gradients 1e-7 off for δ = 1e-8,
-/// 1e-9 for δ = 1e-6; the stress of an affine field with a rigid
-/// translation, 1.4e-8 for δ = 1e-6). Stress values are what people read
-/// off a plot while a shift of 1e-6 element sizes is invisible, so the
-/// first nudge favours the stress.
-/// The larger step is a fallback for maps that degenerate more steeply.
-const NUDGES: [f64; 2] = [1e-6, 1e-4];
-
 /// A det J this much smaller than at the element centre counts as singular
 /// even though it is positive: at the corners of the nine-point disk
 /// rounding leaves det J ≈ 1e-15 of the centre value instead of 0, so
-/// [`Space::shape`] succeeds but its gradients are noise. The first nudge
-/// gives a ratio of about 2e-6, safely above. A det J below minus this
-/// ratio is no rounding: the map folds there.
+/// [`Space::shape`] succeeds but its gradients are noise.
 const SINGULAR_RATIO: f64 = 1e-8;
 
-/// Where the map folds, the strain is taken at the first of these steps
-/// towards the anchor (as fractions δ of the element, as in [`NUDGES`])
+/// Where the map is singular or folds, the strain is taken at the first of
+/// these steps towards the anchor (fractions δ of the element: scaling
+/// about the centre by 1 − 2δ moves a corner by δ·h in each direction)
 /// where det J is at least [`REGULAR_RATIO`] of the anchor's; the anchor
 /// itself is the last resort.
 const FOLD_STEPS: [f64; 6] = [0.01, 0.02, 0.05, 0.1, 0.2, 0.35];
@@ -119,16 +110,8 @@ pub(super) fn anchor(space: &Space, e: &Element) -> Result<Anchor> {
     best.ok_or(at_centre)
 }
 
-/// det J at (ξ, η) times the patch orientation: negative where it folds.
-fn oriented_det(space: &Space, e: &Element, xi: f64, eta: f64) -> f64 {
-    let j = space
-        .patch
-        .jacobian_of(&space.patch.basis_in_spans(e.spans, xi, eta));
-    (j[0][0] * j[1][1] - j[0][1] * j[1][0]) * space.orientation()
-}
-
-/// The sample of element `e` at (ξ, η): there if the map is regular; a
-/// nudge inside where it is singular (the disk corners); where it folds,
+/// The sample of element `e` at (ξ, η): there if the map is regular; where
+/// it is singular (the disk corners) or folds,
 /// drawn at (ξ, η) with the strain of the first regular point towards the
 /// anchor. Cannot fail: the anchor is regular.
 pub(super) fn sample_point(
@@ -146,25 +129,12 @@ pub(super) fn sample_point(
         }
     }
     let c = anchor.param;
-    // Scaling about the anchor by (1 − 2δ) moves a corner by δ·h in each
-    // direction when the anchor is the centre, and keeps the point inside
-    // the element.
     let towards = |d: f64| {
         [
             c[0] + (1.0 - 2.0 * d) * (xi - c[0]),
             c[1] + (1.0 - 2.0 * d) * (eta - c[1]),
         ]
     };
-    if oriented_det(space, e, xi, eta) >= -SINGULAR_RATIO * det_ref {
-        for d in NUDGES {
-            let [x, y] = towards(d);
-            if let Ok(s) = space.shape(e, x, y) {
-                if regular(&s, SINGULAR_RATIO) {
-                    return SamplePoint::at(s);
-                }
-            }
-        }
-    }
     let strain = FOLD_STEPS
         .iter()
         .find_map(|&d| {
