@@ -159,3 +159,33 @@ fn a_zone_across_few_elements_warns() {
     assert_eq!(coarse(8), None);
     assert_eq!(coarse(16), None);
 }
+
+/// The Hertz disk on one element: its two active points carry the load,
+/// but the dense profile finds no zone. `summary.toml` then has
+/// `zones = 0` and no `p0`, `half_width` or `p_max` (a 0 would read as a
+/// measured peak of zero), and the run warns that the zone is unresolved.
+#[test]
+fn no_zone_on_the_profile_leaves_the_measures_out() {
+    let mut scene = companion::shipped("hertz.toml")
+        .unwrap()
+        .refined("disk", iga_contact::scene::RefineSpec::iga(2, [1, 1]))
+        .unwrap();
+    scene.output = Default::default();
+    scene.output.summary = true;
+    let (w, contact) = run(&scene, "one-element");
+    assert_eq!(contact["zones"].as_integer(), Some(0), "{contact:?}");
+    for key in ["p0", "half_width", "p_max"] {
+        assert!(!contact.contains_key(key), "{key} in {contact:?}");
+    }
+    assert!(
+        contact["contact_force"].as_array().unwrap()[1]
+            .as_float()
+            .unwrap()
+            > 0.0
+    );
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, Warning::UnresolvedContact { .. })),
+        "{w:?}"
+    );
+}

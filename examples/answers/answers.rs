@@ -503,7 +503,9 @@ fn read_summary(path: &Path) -> Option<(f64, [f64; 2])> {
     let text = std::fs::read_to_string(path).ok()?;
     let v: toml::Value = toml::from_str(&text).ok()?;
     let pair = v.get("contact")?.as_array()?.first()?;
-    let p0 = pair.get("p0")?.as_float()?;
+    // absent where the profile finds no zone: no peak was measured, which
+    // is as far from the reference as a peak of zero
+    let p0 = pair.get("p0").map_or(Some(0.0), toml::Value::as_float)?;
     let vec2 = |key: &str| -> Option<[f64; 2]> {
         let a = v.get(key)?.as_array()?;
         Some([a.first()?.as_float()?, a.get(1)?.as_float()?])

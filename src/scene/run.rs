@@ -175,11 +175,14 @@ impl Scene {
                             .iter()
                             .fold([0.0, 0.0], |a, f| [a[0] + f[0], a[1] + f[1]]);
                         let st = &stability[r];
+                        // no zone on the profile: nothing was measured, and a
+                        // 0 would read as a measured peak of zero
+                        let measured = |x: f64| (m.zones > 0).then(|| no_negative_zero(x));
                         PairSummary {
-                            p0: no_negative_zero(m.p0),
-                            half_width: no_negative_zero(m.half_width),
+                            p0: measured(m.p0),
+                            half_width: measured(m.half_width),
                             zones: m.zones,
-                            p_max: no_negative_zero(m.p_max),
+                            p_max: measured(m.p_max),
                             contact_force: f.map(no_negative_zero),
                             penalty_below_bound_points: st.iter().map(|s| s.active_below).sum(),
                             min_penalty_ratio: st

@@ -95,14 +95,18 @@ pub(super) struct Summary<'a> {
 /// [`crate::post`] on the dense pressure profile.
 #[derive(Serialize)]
 pub(super) struct PairSummary {
-    /// Peak contact pressure.
-    pub(super) p0: f64,
+    /// Peak contact pressure of the main zone; absent when the profile
+    /// finds no zone (`zones = 0`), as are the two below.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) p0: Option<f64>,
     /// Contact half-width, along the contact tangent at the peak.
-    pub(super) half_width: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) half_width: Option<f64>,
     /// Separate contact zones (1: one connected zone).
     pub(super) zones: usize,
     /// The largest pressure over every zone (p0 describes the main one).
-    pub(super) p_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) p_max: Option<f64>,
     /// Force of the master on the slave.
     pub(super) contact_force: [f64; 2],
     /// Active contact points whose penalty γ lies below the stability bound
