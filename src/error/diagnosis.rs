@@ -44,7 +44,7 @@ impl fmt::Display for Halt {
                 excusable,
             } => write!(
                 f,
-                "the residual stays at {relative:.1e} of its initial value, above the {excusable:e} that round-off may excuse (it can mask up to {level:.1e} here: K u and the contact forces at displacements up to {max_displacement:.3e}) and above rtol = {rtol:e}, so this iterate is no root: a penalty too small to hold the bodies lets them move that far (raise the nitsche.penalty_factor of the contacts), or the input's scale is extreme"
+                "the residual stays at {relative:.1e} of its initial value, above the {excusable:e} that round-off may excuse (it can mask up to {level:.1e} here: K u and the contact forces at displacements up to {max_displacement:.3e}) and above rtol = {rtol:e}, so this iterate is no root: a penalty far from its bound does this, too small to hold the bodies (they move that far) or so large that its forces swamp the balance in round-off (follow the penalty warning if the run gives one), or else the input's scale is extreme"
             ),
             // the fraction as the book's tables print a percentage (`{:.0} %`)
             Halt::Stalled { progress, window } => write!(
