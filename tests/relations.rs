@@ -129,6 +129,16 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
         "a property of Lagrange interpolation, which no chapter program computes",
     ),
     (
+        "bfgs.md",
+        "while every kernel it meets is regular, it either converges or revisits an active set",
+        "a property of a map between finitely many active sets, each a linear piece: an argument, not a measured result",
+    ),
+    (
+        "bfgs.md",
+        "for every step only when",
+        "the algebra of the update (16), shown in the sentence itself",
+    ),
+    (
         "hertz.md",
         "Every chapter of this book measures our own solutions with one estimator",
         "a convention of the book's programs (they all call iga_contact::post), not a measured result",

@@ -30,7 +30,7 @@ use iga_contact::report::table::{Cell, Column, Format, Table, Unit, CONTACT_ERRO
 use iga_contact::report::vtu::sample_bodies;
 use iga_contact::scene::Scene;
 use iga_contact::solver::history::{Event, History};
-use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions, Start};
+use iga_contact::solver::{solve, Growth, Solution, SolverKind, SolverOptions, Start};
 use std::collections::BTreeMap;
 
 // ANCHOR: constants
@@ -60,8 +60,11 @@ fn solvers(scene: &Scene) -> [(&'static str, SolverOptions); 6] {
         ("bfgs_paper", scene.solver),
         (
             "bfgs_paper_secant_start",
+            // the start alone: `growth = "auto"` would also cut the growth
+            // after a secant start, which the tied start does not
             SolverOptions {
                 start: Start::Secant,
+                growth: Growth::Full,
                 ..scene.solver
             },
         ),
