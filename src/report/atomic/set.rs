@@ -86,8 +86,8 @@ impl OutputSet {
             output_error(
                 &target,
                 format!(
-                    "cannot be prepared: its parent `{}` is not writable ({e}), and outputs are \
-                     staged beside the target",
+                    "cannot be prepared: no file can be created in its parent `{}` ({e}), and \
+                     outputs are staged beside the target",
                     parent.display()
                 ),
             )
