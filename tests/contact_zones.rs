@@ -189,3 +189,33 @@ fn no_zone_on_the_profile_leaves_the_measures_out() {
         "{w:?}"
     );
 }
+
+/// A contact already warned for a cause that spoils its zones gets no zone
+/// advice: the disk on a block 10⁶ times stiffer, with the block as slave,
+/// carries the stiffer-slave warning alone (its zone advice, followed,
+/// made p₀ worse: 18.7 × Hertz's, then 280 ×).
+#[test]
+fn no_zone_advice_beside_a_stiffer_slave() {
+    let mut scene = companion::shipped("disk_on_block.toml").unwrap();
+    scene.body_mut("block").unwrap().material.young *= 1e6;
+    let c = &mut scene.contacts[0];
+    let iga_contact::scene::MasterSpec::Body { body, side } = c.master.clone() else {
+        panic!("the disk on the block has a body as master");
+    };
+    c.master = iga_contact::scene::MasterSpec::Body {
+        body: std::mem::replace(&mut c.slave, body),
+        side: c.slave_side.replace(side).unwrap(),
+    };
+    scene.output = Default::default();
+    scene.output.summary = true;
+    let (w, _) = run(&scene, "stiff-slave");
+    assert!(
+        w.iter().any(|w| matches!(w, Warning::StifferSlave { .. })),
+        "{w:?}"
+    );
+    assert!(
+        !w.iter()
+            .any(|w| matches!(w, Warning::CoarseZone { .. } | Warning::SeveralZones { .. })),
+        "{w:?}"
+    );
+}
