@@ -67,9 +67,10 @@ pub fn locking(b: &Body) -> Option<Warning> {
     // the mixed formulation's continuous pressure does not lock (chapter
     // "Near incompressibility")
     // nor, on a C⁰ mesh (Lagrange, interior knots repeated p times), does
-    // the local one: there it is Q1/P0, Q2/P1, …, whose pressure per element
+    // the local one: there it is Q1/P0, Q2/Q1-disc, … (a discontinuous
+    // pressure of degree p − 1 in each direction), whose pressure per element
     // the displacement space can meet (Hertz at ν = 0.49999: Q1/P0 on 32²
-    // +0.5 %, Q2/P1 on 16² +1.3 %, against +71 % for Q1 alone)
+    // +0.5 %, Q2/Q1-disc on 16² +1.3 %, against +71 % for Q1 alone)
     let c0 = is_c0(b);
     if b.material.plane != Plane::Strain
         || nu <= LOCKING_POISSON
