@@ -4,6 +4,8 @@
 //! pressure of all (`p_max`), a roller that moves the body is no symmetry
 //! line, and a main zone too few elements wide to measure warns.
 
+mod common;
+
 use iga_contact::scene::Scene;
 use iga_contact::solver::Warning;
 use std::path::PathBuf;
@@ -198,14 +200,7 @@ fn no_zone_on_the_profile_leaves_the_measures_out() {
 fn no_zone_advice_beside_a_stiffer_slave() {
     let mut scene = companion::shipped("disk_on_block.toml").unwrap();
     scene.body_mut("block").unwrap().material.young *= 1e6;
-    let c = &mut scene.contacts[0];
-    let iga_contact::scene::MasterSpec::Body { body, side } = c.master.clone() else {
-        panic!("the disk on the block has a body as master");
-    };
-    c.master = iga_contact::scene::MasterSpec::Body {
-        body: std::mem::replace(&mut c.slave, body),
-        side: c.slave_side.replace(side).unwrap(),
-    };
+    let mut scene = common::swapped(scene);
     scene.output = Default::default();
     scene.output.summary = true;
     let (w, _) = run(&scene, "stiff-slave");

@@ -9,10 +9,12 @@
 //! cylinder), so 2 % is the bound for an answer that is right; the doubtful
 //! answers are 8 % to 150 % off.
 
+mod common;
+use common::swapped;
 use iga_contact::material::Formulation;
 use iga_contact::post::hertz::{Cylinder, Hertz};
 use iga_contact::post::{relative, PressureProfile};
-use iga_contact::scene::{MasterSpec, RefineSpec, Scene};
+use iga_contact::scene::{RefineSpec, Scene};
 use iga_contact::solver::warning::{PenaltyRemedy, SideEnd, STIFFER_SLAVE};
 use iga_contact::solver::{solve, Growth, SolverOptions, Warning};
 use std::f64::consts::PI;
@@ -57,20 +59,6 @@ fn disk_on_block(stiffness_ratio: f64) -> Scene {
     let mut s = companion::shipped("disk_on_block.toml").unwrap();
     s.body_mut("block").unwrap().material.young *= stiffness_ratio;
     s.output = Default::default();
-    s
-}
-
-/// The contact with its slave and master swapped (the block's top as slave
-/// and the disk as master on the disk on the block).
-fn swapped(mut s: Scene) -> Scene {
-    let c = &mut s.contacts[0];
-    let MasterSpec::Body { body, side } = c.master.clone() else {
-        panic!("the disk on the block has a body as master");
-    };
-    c.master = MasterSpec::Body {
-        body: std::mem::replace(&mut c.slave, body),
-        side: c.slave_side.replace(side).unwrap(),
-    };
     s
 }
 

@@ -1,7 +1,7 @@
 //! From a validated scene to the library's bodies, DOF map, loads and
 //! contact pairs, and from those to a [`Problem`].
 
-use super::patches::{in_body, map_fault};
+use super::patches::discretise_error;
 use super::rules::show;
 use super::validate::Valid;
 use super::{MasterSpec, Scene};
@@ -114,12 +114,7 @@ impl Valid<'_> {
         for (i, b) in self.bodies.iter().enumerate() {
             first.push(bodies.len());
             for patch in self.body_patches(i)? {
-                let fault = |e: Error| match &e {
-                    Error::Geometry(g) if g.is_map_fault() => {
-                        map_fault(e, i, &b.name, b.geometry.kind())
-                    }
-                    _ => in_body(e, i, &b.name, ""),
-                };
+                let fault = |e| discretise_error(e, i, &b.name, b.geometry.kind());
                 let space = Space::new(patch, b.quadrature).map_err(fault)?;
                 if check == MapCheck::EveryPoint {
                     for e in &space.elements {

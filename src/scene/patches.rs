@@ -47,10 +47,11 @@ pub(super) fn in_body(e: Error, i: usize, name: &str, geometry: &str) -> Error {
     }
 }
 
-/// A map that folds or degenerates at a quadrature point of body `i`
-/// (named `name`, geometry kind `kind`): a fault of the scene's geometry, so an invalid
-/// input naming `body[i].geometry`, not a failure of the run.
-pub(super) fn map_fault(e: Error, i: usize, name: &str, kind: &str) -> Error {
+/// An error of discretising body `i` (named `name`, geometry kind `kind`):
+/// a map that folds or degenerates at a quadrature point is a fault of the
+/// scene's geometry, so an invalid input naming `body[i].geometry`, not a
+/// failure of the run; anything else as [`in_body`] retells it.
+pub(super) fn discretise_error(e: Error, i: usize, name: &str, kind: &str) -> Error {
     match e {
         Error::Geometry(g) if g.is_map_fault() => Error::invalid(
             format!("body[{i}].geometry"),
@@ -60,7 +61,7 @@ pub(super) fn map_fault(e: Error, i: usize, name: &str, kind: &str) -> Error {
                  points (or corners) so that it does not fold"
             ),
         ),
-        other => other,
+        other => in_body(other, i, name, ""),
     }
 }
 

@@ -12,6 +12,20 @@ use iga_contact::solver::history::History;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 use std::path::PathBuf;
 
+/// `s` with the slave and master of its first contact swapped (on the
+/// disk on the block: the block's top as slave, the disk as master).
+pub fn swapped(mut s: Scene) -> Scene {
+    let c = &mut s.contacts[0];
+    let iga_contact::scene::MasterSpec::Body { body, side } = c.master.clone() else {
+        panic!("the first contact has a rigid master: nothing to swap");
+    };
+    c.master = iga_contact::scene::MasterSpec::Body {
+        body: std::mem::replace(&mut c.slave, body),
+        side: c.slave_side.replace(side).unwrap(),
+    };
+    s
+}
+
 /// A shipped scene file, loaded.
 pub fn scene(file: &str) -> Scene {
     companion::shipped(file).unwrap_or_else(|e| panic!("{file}: {e}"))
