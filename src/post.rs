@@ -22,9 +22,9 @@ pub use zones::Zone;
 use crate::assembly::load_vector;
 use crate::contact::nitsche::negative_part;
 use crate::contact::pair::checked_contact_points;
-use crate::contact::params::MAX_GAUSS_POINTS;
 pub use crate::contact::penalty::{stability_of, PenaltyStability};
 use crate::contact::{ContactPoint, Integration, Role};
+use crate::contact::{GaussCount, GaussPoints};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linsolve::mul;
@@ -87,22 +87,16 @@ pub struct PressureProfile {
 /// denser sampling that post-processing measures on.
 ///
 /// The pairs are the problem's, checked when it was built; only
-/// `per_element` is new here, and checked (1..=[`MAX_GAUSS_POINTS`]).
+/// `per_element` is new here, and checked ([`GaussCount`]).
 pub fn dense_contact_points(problem: &Problem, per_element: usize) -> Result<Vec<ContactPoint>> {
-    if !(1..=MAX_GAUSS_POINTS).contains(&per_element) {
-        return Err(Error::invalid(
-            "per_element",
-            per_element,
-            format!("must lie in 1..={MAX_GAUSS_POINTS}"),
-        ));
-    }
+    let per_element = GaussPoints::Fixed(GaussCount::new(per_element, "per_element")?);
     let pairs: Vec<_> = problem
         .pairs
         .iter()
         .map(|p| {
             let mut p = p.clone();
             p.nitsche.integration = Integration::Gauss;
-            p.nitsche.gauss_points = Some(per_element);
+            p.nitsche.gauss_points = per_element;
             p
         })
         .collect();

@@ -15,6 +15,6 @@ mod trace;
 pub use contacts::Contacts;
 pub use pair::{contact_points, ContactPair, ContactPoint, Master, Role};
 pub use params::{
-    Integration, Modulus, Nitsche, Penalty, PenaltyFactor, PenaltyFactorError, PenaltyKind, Sides,
-    Theta, MAX_PENALTY_FACTOR, MIN_PENALTY_FACTOR,
+    GaussCount, GaussPoints, Integration, Modulus, Nitsche, Penalty, PenaltyFactor,
+    PenaltyFactorError, PenaltyKind, Sides, Theta, MAX_PENALTY_FACTOR, MIN_PENALTY_FACTOR,
 };

@@ -94,13 +94,12 @@ fn validate(pair: &ContactPair, ip: usize, bodies: &[Body]) -> Result<()> {
             ));
         }
     }
-    pair.nitsche.check_gauss_points(&f("nitsche"))?;
     Ok(())
 }
 
 /// Builds every contact quadrature point of every pair, after checking
-/// the pairs (body indices, [`Nitsche::check_gauss_points`]; the penalty
-/// is valid by its type).
+/// the pairs' body indices (the penalty and the Gauss points are valid by
+/// their types).
 ///
 /// Points whose projection falls beyond the end of the master are left
 /// out: no master surface faces them. For the unbiased form, each body of

@@ -254,6 +254,64 @@ impl Penalty {
 /// Largest number of Gauss points per contact element or segment.
 pub const MAX_GAUSS_POINTS: usize = 30;
 
+/// A number of Gauss points per contact element or segment, in
+/// `1..=`[`MAX_GAUSS_POINTS`], as only [`GaussCount::new`] makes one, so
+/// that what holds one needs no check.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GaussCount(usize);
+
+impl GaussCount {
+    /// `n` as a count, if it lies in `1..=`[`MAX_GAUSS_POINTS`]; else the
+    /// error naming `field`, the key it was read from
+    /// (`contact[0].nitsche.gauss_points`).
+    pub fn new(n: usize, field: impl Into<String>) -> Result<Self> {
+        if (1..=MAX_GAUSS_POINTS).contains(&n) {
+            Ok(GaussCount(n))
+        } else {
+            Err(Error::invalid(
+                field,
+                n,
+                format!("must lie in 1..={MAX_GAUSS_POINTS}"),
+            ))
+        }
+    }
+
+    /// The number.
+    pub fn get(self) -> usize {
+        self.0
+    }
+}
+
+/// How many Gauss points each contact element or segment gets.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GaussPoints {
+    /// p + 2 for slave degree p (the library's default): one more than
+    /// the p + 1 that integrates the product of two traces on a straight
+    /// side exactly.
+    #[default]
+    DegreePlusTwo,
+    /// A count of the user's, as a scene's `gauss_points` key gives it.
+    Fixed(GaussCount),
+}
+
+impl GaussPoints {
+    /// The count for slave degree `degree`.
+    pub fn count(self, degree: usize) -> usize {
+        match self {
+            GaussPoints::DegreePlusTwo => degree + 2,
+            GaussPoints::Fixed(n) => n.get(),
+        }
+    }
+
+    /// The user's count, if one was given.
+    pub fn fixed(self) -> Option<usize> {
+        match self {
+            GaussPoints::DegreePlusTwo => None,
+            GaussPoints::Fixed(n) => Some(n.get()),
+        }
+    }
+}
+
 /// The Nitsche parameters of one contact pair, as a scene's `nitsche`
 /// table is validated into ([`crate::scene::NitscheSpec`]) and chapter
 /// programs build them.
@@ -269,8 +327,8 @@ pub struct Nitsche {
     /// One side (the paper's) or both, between two elastic bodies.
     pub sides: Sides,
     pub integration: Integration,
-    /// Gauss points per element or segment; `None`: p + 2.
-    pub gauss_points: Option<usize>,
+    /// Gauss points per element or segment.
+    pub gauss_points: GaussPoints,
 }
 
 impl Default for Nitsche {
@@ -285,29 +343,15 @@ impl Default for Nitsche {
             modulus: Modulus::Slave,
             sides: Sides::Biased,
             integration: Integration::Segment,
-            gauss_points: None,
+            gauss_points: GaussPoints::DegreePlusTwo,
         }
     }
 }
 
 impl Nitsche {
-    /// Checks the one parameter its type leaves open, the number of Gauss
-    /// points (post-processing sets it to a sampling of its own);
-    /// `field` is the key path of the group (e.g. `contact[0].nitsche`).
-    pub fn check_gauss_points(&self, field: &str) -> Result<()> {
-        match self.gauss_points {
-            Some(n) if n == 0 || n > MAX_GAUSS_POINTS => Err(Error::invalid(
-                format!("{field}.gauss_points"),
-                n,
-                format!("must lie in 1..={MAX_GAUSS_POINTS}"),
-            )),
-            _ => Ok(()),
-        }
-    }
-
     /// Gauss points per element or segment for slave degree `degree`.
     pub fn points(&self, degree: usize) -> usize {
-        self.gauss_points.unwrap_or(degree + 2)
+        self.gauss_points.count(degree)
     }
 }
 
@@ -412,26 +456,19 @@ mod tests {
     }
 
     #[test]
-    fn gauss_points_name_the_key() {
-        for (n, ok) in [
-            (None, true),
-            (Some(1), true),
-            (Some(30), true),
-            (Some(0), false),
-            (Some(31), false),
-        ] {
-            let nit = Nitsche {
-                gauss_points: n,
-                ..Nitsche::default()
-            };
-            let r = nit.check_gauss_points("contact[2].nitsche");
-            assert_eq!(r.is_ok(), ok, "{n:?}");
-            if let Err(e) = r {
-                assert!(
-                    e.to_string().contains("`contact[2].nitsche.gauss_points`"),
+    fn gauss_counts_name_the_key() {
+        for (n, ok) in [(1, true), (30, true), (0, false), (31, false)] {
+            let r = GaussCount::new(n, "contact[2].nitsche.gauss_points");
+            assert_eq!(r.is_ok(), ok, "{n}");
+            match r {
+                Ok(c) => assert_eq!(GaussPoints::Fixed(c).count(7), n),
+                Err(e) => assert!(
+                    e.to_string()
+                        .contains("`contact[2].nitsche.gauss_points` = "),
                     "{e}"
-                );
+                ),
             }
         }
+        assert_eq!(GaussPoints::DegreePlusTwo.count(3), 5);
     }
 }

@@ -3,7 +3,8 @@
 //! and `penalty_factor` are one [`Penalty`] there, read here once.
 
 use crate::contact::{
-    Integration, Modulus, Nitsche, Penalty, PenaltyFactor, PenaltyKind, Sides, Theta,
+    GaussCount, GaussPoints, Integration, Modulus, Nitsche, Penalty, PenaltyFactor, PenaltyKind,
+    Sides, Theta,
 };
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
@@ -42,6 +43,7 @@ impl Default for NitscheSpec {
             integration,
             gauss_points,
         } = Nitsche::default();
+        let gauss_points = gauss_points.fixed();
         Self {
             theta,
             penalty: PenaltyKind::default(),
@@ -61,26 +63,25 @@ impl NitscheSpec {
     pub fn validate(&self, field: &str) -> Result<Nitsche> {
         let factor = PenaltyFactor::new(self.penalty_factor)
             .map_err(|e| e.at(format!("{field}.penalty_factor")))?;
-        let nitsche = Nitsche {
+        let gauss_points = match self.gauss_points {
+            None => GaussPoints::DegreePlusTwo,
+            Some(n) => GaussPoints::Fixed(GaussCount::new(n, format!("{field}.gauss_points"))?),
+        };
+        Ok(Nitsche {
             theta: self.theta,
             penalty: Penalty::new(self.penalty, factor),
             modulus: self.modulus,
             sides: self.sides,
             integration: self.integration,
-            gauss_points: self.gauss_points,
-        };
-        nitsche.check_gauss_points(field)?;
-        Ok(nitsche)
+            gauss_points,
+        })
     }
 
     /// Gauss points per element or segment for slave degree `degree`
     /// ([`Nitsche::points`]).
     pub fn points(&self, degree: usize) -> usize {
-        Nitsche {
-            gauss_points: self.gauss_points,
-            ..Nitsche::default()
-        }
-        .points(degree)
+        self.gauss_points
+            .unwrap_or(GaussPoints::DegreePlusTwo.count(degree))
     }
 }
 
@@ -184,7 +185,7 @@ mod tests {
                 modulus: Modulus::Max,
                 sides: Sides::Unbiased,
                 integration: Integration::Gauss,
-                gauss_points: Some(5),
+                gauss_points: GaussPoints::Fixed(GaussCount::new(5, "n").unwrap()),
             }
         );
         assert_eq!(read(""), NitscheSpec::default());
