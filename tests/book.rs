@@ -161,9 +161,29 @@ fn the_generated_data_is_what_the_programs_compute() {
     }
 }
 
+/// The source of the test target a chapter names as `tests/NAME.rs`: that
+/// file, or, for a target split into a directory (`tests/NAME/main.rs`
+/// declaring one module per concern), every file of the directory.
+fn target_source(root: &Path, file: &str) -> std::io::Result<String> {
+    let dir = root.join(file);
+    if !root.join(format!("{file}.rs")).exists() && dir.join("main.rs").is_file() {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
+            .map(|e| e.map(|e| e.path()))
+            .collect::<std::io::Result<_>>()?;
+        files.retain(|p| p.extension().is_some_and(|e| e == "rs"));
+        files.sort();
+        let mut text = String::new();
+        for f in files {
+            text.push_str(&std::fs::read_to_string(f)?);
+        }
+        return Ok(text);
+    }
+    std::fs::read_to_string(root.join(format!("{file}.rs")))
+}
+
 /// Every test a chapter names, as `tests/FILE.rs::name`, is a function of
-/// that file: a renamed or removed test cannot leave the book pointing at
-/// nothing.
+/// that file (or of the directory target `tests/FILE/`): a renamed or
+/// removed test cannot leave the book pointing at nothing.
 #[test]
 fn every_test_a_chapter_names_exists() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -181,8 +201,8 @@ fn every_test_a_chapter_names_exists() {
                 .chars()
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect();
-            let source = std::fs::read_to_string(root.join(format!("{file}.rs")))
-                .unwrap_or_else(|e| panic!("{chapter}: {file}.rs: {e}"));
+            let source =
+                target_source(root, file).unwrap_or_else(|e| panic!("{chapter}: {file}.rs: {e}"));
             assert!(
                 source.contains(&format!("fn {name}(")),
                 "{chapter}: no test `{name}` in {file}.rs"

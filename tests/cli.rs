@@ -249,7 +249,7 @@ fn usage_errors_are_one_line_naming_the_argument() {
 fn a_warned_run_prints_its_files_then_one_line_per_warning() {
     let dir = workdir("warned-run");
     // Hertz 8×8 with θ = 0 and a penalty far below its bound, solved by
-    // the default solver (which converges there, see tests/scene.rs).
+    // the default solver (which converges there, see tests/scene/outputs.rs).
     let hertz = std::fs::read_to_string(scene("hertz.toml")).unwrap();
     let text = format!(
         "{}\n[output]\niterations = true\npressure_profile = true\nsummary = true\n",

@@ -82,7 +82,7 @@ fn the_contact_resultant_balances_the_load() {
 /// marks the same rows. This load has two roots; the plain iteration
 /// (`growth = "full"`) ends on the one with the corner's point active, the
 /// default's cut growth on one whose zone stops short of the corner (the
-/// right one, by the finer mesh: tests/warnings.rs), so this test asks for
+/// right one, by the finer mesh: tests/warnings/zones.rs), so this test asks for
 /// the plain iteration to have singular samples in the zone.
 #[test]
 fn the_profile_marks_the_singular_corner_and_agrees_with_the_summary() {

@@ -266,7 +266,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     (
         "scenes.md",
         "Nothing that was not asked for is computed",
-        "describes the run's code paths; tests/scene.rs (a_scene_without_outputs_writes_nothing, a_scene_asking_only_for_iterations_writes_only_that) checks the files",
+        "describes the run's code paths; tests/scene/outputs.rs (a_scene_without_outputs_writes_nothing, a_scene_asking_only_for_iterations_writes_only_that) checks the files",
     ),
     (
         "scenes.md",
@@ -286,22 +286,22 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     (
         "scenes.md",
         "Every file is staged in a fresh folder",
-        "describes OutputSet; tests/outputs.rs checks it",
+        "describes OutputSet; tests/outputs/ checks it",
     ),
     (
         "scenes.md",
         "so files of an earlier run never linger",
-        "tests/outputs.rs (a_commit_replaces_the_whole_set_and_lists_it_in_the_manifest)",
+        "tests/outputs/library.rs (a_commit_replaces_the_whole_set_and_lists_it_in_the_manifest)",
     ),
     (
         "scenes.md",
         "the earlier results stay exactly as they were",
-        "tests/outputs.rs (an_io_failure_part_way_through_leaves_the_earlier_set_byte_for_byte, a_full_disk_part_way_through_leaves_the_earlier_set)",
+        "tests/outputs/library.rs (an_io_failure_part_way_through_leaves_the_earlier_set_byte_for_byte), tests/outputs/interrupted.rs (a_full_disk_part_way_through_leaves_the_earlier_set)",
     ),
     (
         "scenes.md",
         "is removed by the next run into the same folder",
-        "tests/outputs.rs (sigint_and_sigterm_end_the_run_without_partial_files, staging_of_a_dead_owner_is_removed_by_the_next_set)",
+        "tests/outputs/interrupted.rs (sigint_and_sigterm_end_the_run_without_partial_files), tests/outputs/library.rs (staging_of_a_dead_owner_is_removed_by_the_next_set)",
     ),
     (
         "scenes.md",

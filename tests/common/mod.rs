@@ -3,6 +3,7 @@
 #![allow(dead_code)] // each test file uses a different subset
 
 pub mod affine;
+pub mod block;
 
 use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
@@ -29,6 +30,21 @@ pub fn swapped(mut s: Scene) -> Scene {
 /// A shipped scene file, loaded.
 pub fn scene(file: &str) -> Scene {
     companion::shipped(file).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+/// The text of a shipped scene file, for tests that edit it before parsing.
+pub fn shipped_text(file: &str) -> String {
+    std::fs::read_to_string(companion::shipped_path(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+/// Multiplies the vertical body force of `s` by `factor` (the heavy-load
+/// cases of the Hertz scenes).
+pub fn scale_body_force(s: &mut Scene, factor: f64) {
+    for l in &mut s.loads {
+        if let Load::BodyForce { force, .. } = l {
+            force[1] *= factor;
+        }
+    }
 }
 
 /// The Hertz scene with p = `degree` on `elements`² and the given θ.
