@@ -12,6 +12,14 @@
 //! the element matrices and the quadrature alone; `BENCH_ASSEMBLY_ONLY=1`
 //! stops after the assembly (for profiling it).
 //!
+//! `cargo run --release --example assembly_bench -- buffers [reps] n1 n2 ...`
+//! times, in one run and on the same meshes, the element matrices of every
+//! element with quadrature buffers ([`ElementValues`]) made afresh for each
+//! element, as the assembly did before it reused them, and with one set per
+//! thread reused across its elements, as it does now; then the whole CSC
+//! assembly (which reuses them). Medians of `reps` runs (default 5),
+//! interleaved so that a change in the machine's load falls on both.
+//!
 //! `cargo run --release --example assembly_bench -- assembly [reps] n1 n2 ...`
 //! times the stiffness assembly alone, `reps` times per mesh (default 7),
 //! and prints the median with the fastest and slowest run: the figures of
@@ -82,6 +90,50 @@ fn assembly_times(n: usize, reps: usize) -> iga_contact::Result<[[f64; 3]; 2]> {
         assembly::stiffness_matrix(&bodies, &map, &[], &[]).map(drop)
     })?;
     Ok([triplets, csc])
+}
+
+/// The element matrices of every element of `body`, in parallel, with
+/// buffers made afresh per element (`reuse` false) or once per thread;
+/// returns a sum of entries so that the work cannot be skipped.
+fn element_matrices(body: &Body, reuse: bool) -> iga_contact::Result<f64> {
+    use rayon::prelude::*;
+    let ne = body.space.elements.len();
+    if reuse {
+        (0..ne)
+            .into_par_iter()
+            .map_init(
+                || ElementValues::new(&body.space),
+                |values, e| assembly::element_stiffness_with(values, body, e).map(|k| k[(0, 0)]),
+            )
+            .sum()
+    } else {
+        (0..ne)
+            .into_par_iter()
+            .map(|e| assembly::element_stiffness(body, e).map(|k| k[(0, 0)]))
+            .sum()
+    }
+}
+
+/// Medians over `reps` interleaved runs at n × n: element matrices with
+/// fresh buffers, with reused ones, and the whole CSC assembly.
+fn buffer_times(n: usize, reps: usize) -> iga_contact::Result<[f64; 3]> {
+    let (bodies, map) = problem(n)?;
+    let mut times = [vec![], vec![], vec![]];
+    for _ in 0..reps {
+        for (k, t) in times.iter_mut().enumerate() {
+            let start = Instant::now();
+            match k {
+                0 => drop(element_matrices(&bodies[0], false)?),
+                1 => drop(element_matrices(&bodies[0], true)?),
+                _ => drop(assembly::stiffness_matrix(&bodies, &map, &[], &[])?),
+            }
+            t.push(start.elapsed().as_secs_f64());
+        }
+    }
+    Ok(times.map(|mut t| {
+        t.sort_by(f64::total_cmp);
+        t[t.len() / 2]
+    }))
 }
 
 fn run(n: usize) -> iga_contact::Result<Timing> {
@@ -167,6 +219,26 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("buffers") {
+        args.remove(0);
+        let reps: usize = if args.len() > 1 {
+            args.remove(0).parse()?
+        } else {
+            5
+        };
+        let reps = reps.max(1);
+        let sizes: Vec<usize> = args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
+        println!("| elements | runs | element matrices, fresh buffers s | reused buffers s | fresh ÷ reused | CSC assembly s |");
+        println!("|---|---:|---:|---:|---:|---:|");
+        for n in sizes {
+            let [fresh, reused, csc] = buffer_times(n, reps)?;
+            println!(
+                "| {n}×{n} | {reps} | {fresh:.3} | {reused:.3} | {:.2}× | {csc:.3} |",
+                fresh / reused
+            );
+        }
+        return Ok(());
+    }
     if args.first().map(String::as_str) == Some("assembly") {
         args.remove(0);
         let reps: usize = if args.len() > 1 {

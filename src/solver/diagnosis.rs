@@ -30,7 +30,7 @@ pub(crate) fn failure(
                 .collect(),
         });
         // measured: Hertz p = 3 on 8² cycles with period 7 from the tied
-        // start and converges from the secant one (tests/solver.rs); by
+        // start and converges from the secant one (tests/solver/); by
         // hand, hertz.toml at penalty factor 0.71 cycles with period 6 and
         // converges in 9 iterations after the advice
         if start == Start::Tied {

@@ -32,7 +32,7 @@ pub(crate) const STALL: Halt = Halt::Stalled {
 /// leaves Hertz at a few percent). Within it a tiny penalty of the skew
 /// variant θ = −1, whose contact terms of size w|σ_n|/γ cancel, converges:
 /// at 10⁻⁴ of Eq. (11) on Hertz 8² its residual stalls at 4e-8 with p₀
-/// within 1 % (`tests/solver.rs::the_skew_variant_converges_with_a_tiny_penalty`);
+/// within 1 % (`tests/solver/hard_cases.rs::the_skew_variant_converges_with_a_tiny_penalty`);
 /// the √ε this was once set to rejected that answer.
 pub const RESOLVABLE: f64 = 1e-6;
 

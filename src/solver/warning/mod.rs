@@ -4,7 +4,7 @@
 //!
 //! Each warning names one cause, the measurement that shows it, and one
 //! remedy; the remedy is chosen so that, followed, the warning goes away and
-//! the answer is right to the method's accuracy (`tests/warnings.rs` checks
+//! the answer is right to the method's accuracy (`tests/warnings/` checks
 //! each). The thresholds are measured on the shipped Hertz scenes; the
 //! book's scene chapter lists them with their measurements.
 
