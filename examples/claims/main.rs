@@ -13,6 +13,7 @@
 use companion::chapter::Chapter;
 use companion::facts;
 use companion::facts::Facts;
+use companion::Solver;
 use iga_contact::error::{Error, Result};
 use iga_contact::report::table::{Column, Format, Table};
 
@@ -146,6 +147,12 @@ fn penalty_claim() -> Result<Claim> {
     })
 }
 
+/// The Hertz chapter's fact of one run of its solver ladder: the
+/// iterations of `solver` on p, `n`², or `failed`.
+fn ladder_key(solver: Solver, p: usize, n: usize) -> String {
+    format!("its_{}_p{p}_{n}", solver.key())
+}
+
 /// Claim 2: K̃₀ (17) is a good enough start for BFGS. Like for like: the
 /// paper's iteration (its correction rule, full steps, body space) from K̃₀
 /// and from the balanced secant start, nothing else changed, on every run of
@@ -154,16 +161,15 @@ fn penalty_claim() -> Result<Claim> {
 /// is not what fails); it does not when only the secant start converges.
 fn start_claim() -> Result<Claim> {
     let f = facts("hertz")?;
-    let converges = |solver: &str, p: usize, n: usize| -> Result<bool> {
-        let key = format!("its_{solver}_p{p}_{n}");
-        Ok(text(&f, "hertz", &key)? != "failed")
+    let converges = |solver: Solver, p: usize, n: usize| -> Result<bool> {
+        Ok(text(&f, "hertz", &ladder_key(solver, p, n))? != "failed")
     };
     let mut tied = 0;
     let mut secant = 0;
     let mut limits = Vec::new();
     for (p, n) in LADDER {
-        let t = converges("bfgs_paper", p, n)?;
-        let s = converges("bfgs_paper_secant_start", p, n)?;
+        let t = converges(Solver::Paper, p, n)?;
+        let s = converges(Solver::PaperSecantStart, p, n)?;
         tied += usize::from(t);
         secant += usize::from(s);
         if !t && s {
@@ -211,8 +217,8 @@ fn correction_claim() -> Result<Claim> {
     let mut cases = 0;
     let mut pairs = Vec::new();
     for (p, n) in LADDER {
-        let with = f.value(&format!("its_bfgs_paper_p{p}_{n}"));
-        let without = f.value(&format!("its_bfgs_paper_no_correction_p{p}_{n}"));
+        let with = f.value(&ladder_key(Solver::Paper, p, n));
+        let without = f.value(&ladder_key(Solver::PaperNoCorrection, p, n));
         let show = |v: Option<f64>| v.map_or("failed".to_string(), |v| format!("{v}"));
         pairs.push(format!("p = {p}, {n}²: {} / {}", show(with), show(without)));
         cases += 1;

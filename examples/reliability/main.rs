@@ -25,11 +25,12 @@ use companion::harness;
 
 use companion::chapter::Chapter;
 use companion::timing::{median_time, Machine};
+use companion::Solver;
 use harness::{body_scene, commit, launch, mesh, refine, Launch, MULTIPATCH_SHAPES, SHAPES};
 use iga_contact::post::contact_resultant;
 use iga_contact::report::table::{Cell, Column, Format, Table, Unit};
 use iga_contact::scene::{Scene, MAX_DEGREE, MAX_ELEMENTS};
-use iga_contact::solver::{solve, SolverKind, SolverOptions};
+use iga_contact::solver::solve;
 use iga_contact::{geometry, Result};
 use std::path::Path;
 use std::time::Instant;
@@ -245,8 +246,16 @@ fn ill_posed(work: &Path, chapter: &mut Chapter) -> Result<usize> {
 
 // ANCHOR: gaps
 /// A body above the floor, held only sideways, loaded downwards: only a
-/// rigid motion closes the gap. (label, size, scene at `gap`, load).
-type Lifted = (&'static str, f64, fn(f64) -> String, f64);
+/// rigid motion closes the gap.
+struct Lifted {
+    label: &'static str,
+    /// Its size, the unit of the gap.
+    size: f64,
+    /// Its scene, lifted by a gap.
+    scene: fn(f64) -> String,
+    /// The load the contact must carry.
+    load: f64,
+}
 
 fn block(gap: f64) -> String {
     format!(
@@ -283,24 +292,32 @@ fn disk(gap: f64) -> String {
 /// Initial gaps, in units of the body's size.
 const GAP_RATIOS: [f64; 6] = [0.0, 0.002, 0.02, 0.2, 1.0, 2.0];
 
+/// What the gaps' facts quote.
+struct Gaps {
+    /// The largest iteration count of the default BFGS and Newton.
+    most_iterations: usize,
+    /// The largest relative force error of any converged run.
+    worst_force_error: f64,
+}
+
 /// Solves every lifted body with the default BFGS, Newton and the paper's
-/// BFGS; returns the largest iteration count of the first two and the
-/// largest relative force error of any converged run.
-fn gaps(chapter: &mut Chapter) -> Result<(usize, f64)> {
-    let bodies: [Lifted; 2] = [
-        ("block", 0.5, block, 1.0e7),
-        (
-            "half disk",
-            0.4,
-            disk,
-            1.3e6 * std::f64::consts::PI * 0.04 / 2.0,
-        ),
+/// BFGS (the columns of the table, in this order).
+fn gaps(chapter: &mut Chapter) -> Result<Gaps> {
+    let bodies = [
+        Lifted {
+            label: "block",
+            size: 0.5,
+            scene: block,
+            load: 1.0e7,
+        },
+        Lifted {
+            label: "half disk",
+            size: 0.4,
+            scene: disk,
+            load: 1.3e6 * std::f64::consts::PI * 0.04 / 2.0,
+        },
     ];
-    let solvers = [
-        ("bfgs", SolverOptions::default()),
-        ("newton", SolverOptions::with_kind(SolverKind::Newton)),
-        ("paper", SolverOptions::paper()),
-    ];
+    let solvers = [Solver::Bfgs, Solver::Newton, Solver::Paper];
     let mut table = Table::new(vec![
         Column::plain("body", "body"),
         Column::new("gap_ratio", "gap / size", Unit::None, Format::Fixed(3)),
@@ -310,17 +327,23 @@ fn gaps(chapter: &mut Chapter) -> Result<(usize, f64)> {
         Column::new("force_error", "force error", Unit::None, Format::Sci(0)),
     ]);
     let (mut most, mut worst) = (0, 0.0f64);
-    for (name, size, scene, load) in bodies {
+    for Lifted {
+        label,
+        size,
+        scene,
+        load,
+    } in bodies
+    {
         for ratio in GAP_RATIOS {
             let problem = Scene::from_toml_str(&scene(ratio * size))?.build()?;
-            let mut row: Vec<Cell> = vec![name.into(), ratio.into()];
+            let mut row: Vec<Cell> = vec![label.into(), ratio.into()];
             let mut error = 0.0f64;
-            for (key, opts) in &solvers {
-                match solve(&problem, opts) {
+            for solver in solvers {
+                match solve(&problem, &solver.options()) {
                     Ok(s) => {
                         let f = contact_resultant(&problem, &s.full)[1];
                         error = error.max((f - load).abs() / load);
-                        if *key != "paper" {
+                        if solver != Solver::Paper {
                             most = most.max(s.history.len());
                         }
                         row.push(s.history.len().into());
@@ -337,7 +360,10 @@ fn gaps(chapter: &mut Chapter) -> Result<(usize, f64)> {
         }
     }
     chapter.table("gaps", &table)?;
-    Ok((most, worst))
+    Ok(Gaps {
+        most_iterations: most,
+        worst_force_error: worst,
+    })
 }
 // ANCHOR_END: gaps
 
@@ -379,7 +405,7 @@ fn main() -> Result<()> {
     eprintln!("4/6 ill-posed input");
     let refused = ill_posed(&work, &mut chapter)?;
     eprintln!("5/6 gaps");
-    let (gap_iterations, gap_force) = gaps(&mut chapter)?;
+    let gaps = gaps(&mut chapter)?;
     eprintln!("6/6 faults");
     let faults = faults::run(&work)?;
     let _ = std::fs::remove_dir_all(&work);
@@ -459,13 +485,17 @@ fn main() -> Result<()> {
         Format::Fixed(2),
     )?;
     f.count("ill_posed_refused", refused)?;
-    f.count("gap_max_iterations", gap_iterations)?;
+    f.count("gap_max_iterations", gaps.most_iterations)?;
     f.number(
         "gap_ratio_max",
         GAP_RATIOS[GAP_RATIOS.len() - 1],
         Format::Plain,
     )?;
-    f.number("gap_force_error", gap_force.max(1e-16), Format::Pow10(0))?;
+    f.number(
+        "gap_force_error",
+        gaps.worst_force_error.max(1e-16),
+        Format::Pow10(0),
+    )?;
     f.count("fuzz_inputs", fuzz as usize)?;
     f.count("fuzz_families", families)?;
     f.count("fault_trials", faults.trials)?;

@@ -9,7 +9,7 @@ use companion::hertz as setup;
 
 use companion::chapter::Chapter;
 use companion::timing::median_time;
-use companion::Facts;
+use companion::{Facts, Solver};
 use iga_contact::error::{Error, Result};
 use iga_contact::post::PressureProfile;
 use iga_contact::report::history::history_table;
@@ -26,42 +26,26 @@ const MESHES: [usize; 4] = [8, 16, 32, 64];
 const REPEATS: usize = 5;
 
 // ANCHOR: solvers
-/// The solvers compared: the names the tables use, the fact keys, and the
-/// options. The library's default BFGS (balanced secant start, a correction
-/// at every change of the active set, on the contact layer), the same never
-/// corrected, Newton, and the paper's iteration (tied start, the correction
-/// when ‖R‖ grows after 8 iterations, full steps, over the body) with and
-/// without its correction.
-fn solvers() -> [(&'static str, &'static str, SolverOptions); 5] {
-    let paper = SolverOptions::paper();
-    [
-        ("default BFGS", "bfgs", SolverOptions::default()),
-        (
-            "default BFGS without correction",
-            "bfgs_no_correction",
-            SolverOptions::with_kind(SolverKind::BfgsNoCorrection),
-        ),
-        (
-            "Newton",
-            "newton",
-            SolverOptions::with_kind(SolverKind::Newton),
-        ),
-        ("the paper's BFGS", "bfgs_paper", paper),
-        (
-            "the paper's BFGS without correction",
-            "bfgs_paper_no_correction",
-            SolverOptions {
-                kind: SolverKind::BfgsNoCorrection,
-                ..paper
-            },
-        ),
-    ]
-}
+/// The solvers compared, in the order of the tables (each named there by
+/// [`Solver::name`], in the facts by [`Solver::key`], with the options
+/// [`Solver::options`]): the library's default BFGS (balanced secant start,
+/// a correction at every change of the active set, on the contact layer),
+/// the same never corrected, Newton, and the paper's iteration
+/// (`SolverOptions::paper()`: tied start, the correction when ‖R‖ grows
+/// after 8 iterations, full steps, over the body) with and without its
+/// correction.
+const SOLVERS: [Solver; 5] = [
+    Solver::Bfgs,
+    Solver::BfgsNoCorrection,
+    Solver::Newton,
+    Solver::Paper,
+    Solver::PaperNoCorrection,
+];
 // ANCHOR_END: solvers
 
 /// One solve: its history, and what was measured if it converged.
 struct Outcome {
-    solver: &'static str,
+    solver: Solver,
     elements: usize,
     dofs: usize,
     history: History,
@@ -75,11 +59,12 @@ struct Outcome {
 // ANCHOR: run
 /// Runs one solver on Hertz p = 2 with `elements`²; non-convergence is a
 /// result and is recorded.
-fn outcome(solver: &'static str, opts: &SolverOptions, elements: usize) -> Result<Outcome> {
+fn outcome(solver: Solver, elements: usize) -> Result<Outcome> {
     let scene = setup::scene(setup::iga(2, elements))?;
+    let opts = solver.options();
     let timed = median_time(REPEATS, || {
         let problem = scene.build()?;
-        let result = solve(&problem, opts);
+        let result = solve(&problem, &opts);
         Ok((problem, result))
     })?;
     let (problem, result) = timed.value;
@@ -110,28 +95,44 @@ fn outcome(solver: &'static str, opts: &SolverOptions, elements: usize) -> Resul
 // ANCHOR_END: run
 
 // ANCHOR: paper_runs
+/// One run on a shipped scene: its fact key, the scene, the labels of its
+/// solver and steps in the table, and its options.
+#[derive(Clone, Copy)]
+struct PaperRun {
+    key: &'static str,
+    file: &'static str,
+    solver: &'static str,
+    steps: &'static str,
+    options: SolverOptions,
+}
+
 /// The runs on the shipped scenes (Hertz 8×8 and Taylor, θ = 0) that the
-/// chapters "Newton and BFGS" and "Starting and correcting BFGS" quote:
-/// fact key, scene, solver and step labels, options.
-fn paper_runs() -> [(
-    &'static str,
-    &'static str,
-    &'static str,
-    &'static str,
-    SolverOptions,
-); 8] {
+/// chapters "Newton and BFGS" and "Starting and correcting BFGS" quote.
+fn paper_runs() -> [PaperRun; 8] {
     let paper = SolverOptions::paper();
     let damped = SolverOptions {
         line_search_after: 0,
         ..paper
     };
     let plain = SolverKind::BfgsNoCorrection;
+    let hertz = |key, solver, steps, options| PaperRun {
+        key,
+        file: "hertz.toml",
+        solver,
+        steps,
+        options,
+    };
     [
-        ("taylor", "taylor.toml", "BFGS", "full", paper),
-        ("paper", "hertz.toml", "BFGS", "full", paper),
-        (
+        PaperRun {
+            key: "taylor",
+            file: "taylor.toml",
+            solver: "BFGS",
+            steps: "full",
+            options: paper,
+        },
+        hertz("paper", "BFGS", "full", paper),
+        hertz(
             "paper_plain",
-            "hertz.toml",
             "BFGS, no corr.",
             "full",
             SolverOptions {
@@ -139,10 +140,9 @@ fn paper_runs() -> [(
                 ..paper
             },
         ),
-        ("damped", "hertz.toml", "BFGS", "damped", damped),
-        (
+        hertz("damped", "BFGS", "damped", damped),
+        hertz(
             "damped_plain",
-            "hertz.toml",
             "BFGS, no corr.",
             "damped",
             SolverOptions {
@@ -151,9 +151,8 @@ fn paper_runs() -> [(
             },
         ),
         // the correction allowed from iteration 3: it meets the disk in the air
-        (
+        hertz(
             "guard",
-            "hertz.toml",
             "BFGS, corr. from 3",
             "full",
             SolverOptions {
@@ -161,9 +160,8 @@ fn paper_runs() -> [(
                 ..paper
             },
         ),
-        (
+        hertz(
             "newton_tied",
-            "hertz.toml",
             "Newton, tied start",
             "default",
             SolverOptions {
@@ -172,13 +170,7 @@ fn paper_runs() -> [(
                 ..SolverOptions::default()
             },
         ),
-        (
-            "default",
-            "hertz.toml",
-            "default",
-            "default",
-            SolverOptions::default(),
-        ),
+        hertz("default", "default", "default", SolverOptions::default()),
     ]
 }
 // ANCHOR_END: paper_runs
@@ -204,9 +196,9 @@ fn main() -> Result<()> {
     // and correcting BFGS": two iteration histories, their summary table
     // and facts.
     let shipped = solve_shipped()?;
-    for run in shipped.iter().filter(|r| HISTORIES.contains(&r.key)) {
+    for run in shipped.iter().filter(|r| HISTORIES.contains(&r.run.key)) {
         let t = history_table(&run.solution.history, Unit::NewtonPerMetre, Unit::Metre)?;
-        chapter.table(&format!("history_{}", run.key), &t)?;
+        chapter.table(&format!("history_{}", run.run.key), &t)?;
     }
     chapter.table("shipped", &shipped_table(&shipped)?)?;
     record_shipped_facts(chapter.facts(), &shipped)?;
@@ -225,10 +217,7 @@ fn main() -> Result<()> {
 
 /// One run of [`paper_runs`], solved.
 struct ShippedRun {
-    key: &'static str,
-    file: &'static str,
-    solver: &'static str,
-    steps: &'static str,
+    run: PaperRun,
     solution: Solution,
 }
 
@@ -236,16 +225,10 @@ struct ShippedRun {
 fn solve_shipped() -> Result<Vec<ShippedRun>> {
     paper_runs()
         .into_iter()
-        .map(|(key, file, solver, steps, opts)| {
-            let problem = companion::shipped(file)?.build()?;
-            let solution = solve(&problem, &opts)?;
-            Ok(ShippedRun {
-                key,
-                file,
-                solver,
-                steps,
-                solution,
-            })
+        .map(|run| {
+            let problem = companion::shipped(run.file)?.build()?;
+            let solution = solve(&problem, &run.options)?;
+            Ok(ShippedRun { run, solution })
         })
         .collect()
 }
@@ -265,15 +248,15 @@ fn shipped_table(runs: &[ShippedRun]) -> Result<Table> {
         let s = &run.solution;
         let h = &s.history;
         let corrected = first(s, Event::Correction);
-        let scene = if run.file == "taylor.toml" {
+        let scene = if run.run.file == "taylor.toml" {
             "Taylor"
         } else {
             "Hertz 8²"
         };
         table.push(vec![
             scene.into(),
-            run.solver.into(),
-            run.steps.into(),
+            run.run.solver.into(),
+            run.run.steps.into(),
             h.len().into(),
             s.factorisations.into(),
             h.corrections().into(),
@@ -292,7 +275,7 @@ fn shipped_table(runs: &[ShippedRun]) -> Result<Table> {
 /// correction and the active points iteration by iteration.
 fn record_shipped_facts(f: &mut Facts, runs: &[ShippedRun]) -> Result<()> {
     for run in runs {
-        let (key, s) = (run.key, &run.solution);
+        let (key, s) = (run.run.key, &run.solution);
         let h = &s.history;
         let corrected = first(s, Event::Correction);
         f.count(&format!("{key}_its"), h.len())?;
@@ -328,9 +311,9 @@ fn record_shipped_facts(f: &mut Facts, runs: &[ShippedRun]) -> Result<()> {
 /// "How it is measured": every solver on every mesh.
 fn solve_ladder() -> Result<Vec<Outcome>> {
     let mut all = Vec::new();
-    for (name, _, opts) in solvers() {
+    for solver in SOLVERS {
         for n in MESHES {
-            all.push(outcome(name, &opts, n)?);
+            all.push(outcome(solver, n)?);
         }
     }
     Ok(all)
@@ -361,7 +344,7 @@ fn solvers_table(all: &[Outcome]) -> Result<Table> {
     ]);
     for o in all {
         table.push(vec![
-            o.solver.into(),
+            o.solver.name().into(),
             o.elements.into(),
             o.dofs.into(),
             (if o.failure.is_none() { "yes" } else { "**no**" }).into(),
@@ -381,16 +364,16 @@ fn solvers_table(all: &[Outcome]) -> Result<Table> {
 /// Fig. S1: iterations against the mesh, per solver. Newton dashed: it lies
 /// on the default BFGS, which corrects at every iteration here.
 fn draw_iterations(chapter: &Chapter, all: &[Outcome]) -> Result<()> {
-    let series: Vec<Series> = solvers()
+    let series: Vec<Series> = SOLVERS
         .iter()
-        .map(|&(name, key, _)| {
+        .map(|&solver| {
             let pts = all
                 .iter()
-                .filter(|o| o.solver == name && o.failure.is_none())
+                .filter(|o| o.solver == solver && o.failure.is_none())
                 .map(|o| (o.elements as f64, o.history.len() as f64))
                 .collect();
-            let line = Series::line(name, pts).with_markers();
-            if key == "newton" {
+            let line = Series::line(solver.name(), pts).with_markers();
+            if solver == Solver::Newton {
                 line.dashed()
             } else {
                 line
@@ -415,21 +398,29 @@ fn draw_iterations(chapter: &Chapter, all: &[Outcome]) -> Result<()> {
 /// many more the uncorrected BFGS takes, Newton's range, the failures, and
 /// on how many meshes the uncorrected default is the faster.
 fn record_ladder_facts(f: &mut Facts, all: &[Outcome]) -> Result<()> {
-    let its = |name: &str, n: usize| {
+    let its = |solver: Solver, n: usize| {
         all.iter()
-            .find(|o| o.solver == name && o.elements == n)
+            .find(|o| o.solver == solver && o.elements == n)
             .map_or(0, |o| o.history.len())
     };
     let (coarse, fine) = (MESHES[0], MESHES[MESHES.len() - 1]);
-    for (name, key, _) in solvers() {
-        f.count(&format!("{key}_coarse"), its(name, coarse))?;
-        f.count(&format!("{key}_fine"), its(name, fine))?;
+    for solver in SOLVERS {
+        let key = solver.key();
+        f.count(&format!("{key}_coarse"), its(solver, coarse))?;
+        f.count(&format!("{key}_fine"), its(solver, fine))?;
     }
-    let names = solvers().map(|(name, _, _)| name);
-    let ratio = |without: &str, with: &str, n| its(without, n) as f64 / its(with, n) as f64;
+    let ratio = |without, with, n| its(without, n) as f64 / its(with, n) as f64;
     for (key, without, with) in [
-        ("no_correction_ratio", names[1], names[0]),
-        ("paper_no_correction_ratio", names[4], names[3]),
+        (
+            "no_correction_ratio",
+            Solver::BfgsNoCorrection,
+            Solver::Bfgs,
+        ),
+        (
+            "paper_no_correction_ratio",
+            Solver::PaperNoCorrection,
+            Solver::Paper,
+        ),
     ] {
         f.number(
             &format!("{key}_coarse"),
@@ -444,7 +435,7 @@ fn record_ladder_facts(f: &mut Facts, all: &[Outcome]) -> Result<()> {
     }
     let newton: Vec<usize> = all
         .iter()
-        .filter(|o| o.solver == "Newton")
+        .filter(|o| o.solver == Solver::Newton)
         .map(|o| o.history.len())
         .collect();
     f.text(
@@ -460,14 +451,14 @@ fn record_ladder_facts(f: &mut Facts, all: &[Outcome]) -> Result<()> {
         all.iter().filter(|o| o.failure.is_some()).count(),
     )?;
     // wall time: on how many meshes the uncorrected default is the faster
-    let seconds = |name: &str, n: usize| {
+    let seconds = |solver: Solver, n: usize| {
         all.iter()
-            .find(|o| o.solver == name && o.elements == n)
+            .find(|o| o.solver == solver && o.elements == n)
             .map_or(f64::NAN, |o| o.seconds)
     };
     let faster = MESHES
         .iter()
-        .filter(|&&n| seconds(names[1], n) < seconds(names[0], n))
+        .filter(|&&n| seconds(Solver::BfgsNoCorrection, n) < seconds(Solver::Bfgs, n))
         .count();
     f.count("repeats", REPEATS)?;
     f.count("meshes", MESHES.len())?;

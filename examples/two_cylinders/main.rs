@@ -9,7 +9,7 @@
 //! Run it with `cargo run --release --example two_cylinders`.
 
 use companion::chapter::Chapter;
-use companion::Facts;
+use companion::{Facts, Solver};
 use iga_contact::assembly::Load;
 use iga_contact::error::{Error, Result};
 use iga_contact::post::hertz::{Cylinder, Hertz};
@@ -21,7 +21,7 @@ use iga_contact::report::plot::{
 };
 use iga_contact::report::table::{Column, Format, Table, Unit, CONTACT_ERRORS};
 use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
-use iga_contact::solver::{solve, Solution, SolverKind, SolverOptions};
+use iga_contact::solver::{solve, Solution};
 use std::f64::consts::PI;
 
 // ANCHOR: setup
@@ -74,7 +74,7 @@ fn analytic(scene: &Scene) -> Result<Hertz> {
 struct Run {
     degree: usize,
     elements: usize,
-    solver: &'static str,
+    solver: Solver,
     problem: Problem,
     solution: Solution,
     p0: f64,
@@ -82,9 +82,9 @@ struct Run {
     zones: usize,
 }
 
-fn run(p: usize, n: usize, solver: &'static str, kind: SolverKind) -> Result<Run> {
+fn run(p: usize, n: usize, solver: Solver) -> Result<Run> {
     let problem = scene(p, n)?.build()?;
-    let solution = solve(&problem, &SolverOptions::with_kind(kind))?;
+    let solution = solve(&problem, &solver.options())?;
     let m = PressureProfile::dense(&problem, &solution.full)?.measures(0);
     Ok(Run {
         degree: p,
@@ -135,14 +135,14 @@ struct Ladder {
 fn solve_ladder() -> Result<Ladder> {
     let mut runs = Vec::new();
     for n in LADDER {
-        for (name, kind) in [("bfgs", SolverKind::Bfgs), ("newton", SolverKind::Newton)] {
-            runs.push(run(2, n, name, kind)?);
+        for solver in [Solver::Bfgs, Solver::Newton] {
+            runs.push(run(2, n, solver)?);
         }
     }
-    let reference = run(REFERENCE.0, REFERENCE.1, "newton", SolverKind::Newton)?;
+    let reference = run(REFERENCE.0, REFERENCE.1, Solver::Newton)?;
     // The reference's own error, estimated by its distance from the same
     // degree on half the elements (an upper estimate for a converging pair).
-    let coarse_reference = run(REFERENCE.0, REFERENCE.1 / 2, "newton", SolverKind::Newton)?;
+    let coarse_reference = run(REFERENCE.0, REFERENCE.1 / 2, Solver::Newton)?;
     Ok(Ladder {
         runs,
         reference,
@@ -154,7 +154,10 @@ fn solve_ladder() -> Result<Ladder> {
 impl Ladder {
     /// The p = 2 rungs solved by BFGS, coarsest first.
     fn bfgs(&self) -> Vec<&Run> {
-        self.runs.iter().filter(|r| r.solver == "bfgs").collect()
+        self.runs
+            .iter()
+            .filter(|r| r.solver == Solver::Bfgs)
+            .collect()
     }
 }
 
@@ -185,7 +188,7 @@ fn ladder_table(ladder: &Ladder, exact: &Hertz) -> Result<Table> {
             r.degree.into(),
             r.elements.into(),
             r.problem.n().into(),
-            r.solver.into(),
+            r.solver.key().into(),
             r.solution.history.len().into(),
             r.p0.into(),
             r.half_width.into(),

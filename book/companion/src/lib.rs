@@ -25,10 +25,12 @@ pub mod harness;
 pub mod hertz;
 pub mod lame;
 pub mod penalty;
+pub mod solvers;
 pub mod taylor;
 
 pub use chapter::{cli_binary, generated_root, source_root, Chapter, Cost, Program, PROGRAMS};
 pub use facts::Facts;
+pub use solvers::Solver;
 
 use iga_contact::scene::Scene;
 use iga_contact::Result;
