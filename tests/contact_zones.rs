@@ -214,3 +214,48 @@ fn no_zone_advice_beside_a_stiffer_slave() {
         "{w:?}"
     );
 }
+
+/// A high-degree slave needs more elements across its zone: the four-patch
+/// half disk at p = 5 on 8² spans 2.1 elements, which is enough for
+/// p = 2 but less than half the support of one quintic function (3), and at
+/// the penalty the below-bound warning advises (factor 4.4) its p₀ is
+/// 14 % above the converged one (p = 3, 64², one-patch disk). The run warns
+/// and advises about 46 elements on the slave boundary (16 now); refined so
+/// (24² puts 48 there), it is silent and within 2 % of the reference.
+#[test]
+fn a_high_degree_slave_needs_more_elements_across_its_zone() {
+    let hertz = |scene: &str, p: usize, n: usize, factor: f64| {
+        let mut s = companion::shipped(scene).unwrap();
+        s.body_mut("disk").unwrap().refine = Some(iga_contact::scene::RefineSpec::iga(p, [n, n]));
+        s.solver = Default::default();
+        for nit in s.nitsche_mut() {
+            nit.penalty_factor = factor;
+        }
+        s.output = Default::default();
+        s.output.summary = true;
+        let (w, contact) = run(&s, &format!("{scene}-{p}-{n}-{factor}"));
+        (w, num(&contact, "p0"))
+    };
+    let (_, reference) = hertz("hertz.toml", 3, 64, 1.0);
+    let (w, p0) = hertz("hertz_multipatch.toml", 5, 8, 4.4);
+    assert!(p0 / reference - 1.0 > 0.1, "{p0} against {reference}");
+    let advised = w
+        .iter()
+        .find_map(|w| match w {
+            Warning::CoarseZone {
+                needed,
+                side_elements,
+                advised,
+                ..
+            } => Some((*needed, *side_elements, *advised)),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no coarse-zone warning: {w:?}"));
+    assert_eq!(advised.0, 3.0);
+    assert_eq!(advised.1, 16);
+    // the slave boundary has two elements per element of `elements`
+    let n = advised.2.div_ceil(2);
+    let (w, p0) = hertz("hertz_multipatch.toml", 5, n, 4.4);
+    assert!(w.is_empty(), "{w:?}");
+    assert!((p0 / reference - 1.0).abs() < 0.02, "{p0} against {reference}");
+}

@@ -316,7 +316,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     (
         "claims.md",
         "The like-for-like test is the paper's iteration with and without that correction",
-        "the set-up of the Hertz ladder's two paper rows: examples/hertz/main.rs changes only the solver kind of the scene's [solver] table",
+        "the set-up of the Hertz ladder's two paper rows: companion::Solver::options_from (book/companion/src/solvers.rs) changes only the solver kind of the scene's [solver] table",
     ),
 ];
 

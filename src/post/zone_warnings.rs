@@ -5,7 +5,7 @@
 
 use super::PressureProfile;
 use crate::problem::Problem;
-use crate::solver::warning::{ZoneShare, ZONE_ELEMENTS, ZONE_ELEMENTS_TARGET, ZONE_SHARE};
+use crate::solver::warning::{zone_elements, ZoneShare, ZONE_SHARE};
 use crate::solver::Warning;
 
 /// The zone warnings of every contact of `problem`, measured on `profile`
@@ -39,7 +39,8 @@ pub fn zone_warnings(
     };
     let mut out = Vec::new();
     for (c, pieces) in problem.contacts.iter() {
-        let slave = &problem.bodies[problem.pairs[pieces.start].slave].name;
+        let slave_index = problem.pairs[pieces.start].slave;
+        let slave = &problem.bodies[slave_index].name;
         if doubtful(c, slave) {
             continue;
         }
@@ -69,12 +70,15 @@ pub fn zone_warnings(
         if let Some(per) = profile.per_element() {
             let across = zones[main].samples.len() as f64 / per as f64;
             let side_elements = pieces.clone().map(|k| profile.pair(k).len()).sum::<usize>() / per;
-            if across < ZONE_ELEMENTS {
-                let advised =
-                    (side_elements as f64 * ZONE_ELEMENTS_TARGET / across).ceil() as usize;
+            let degree = problem.bodies[slave_index].space.patch.degree();
+            let (needed, target) = zone_elements(degree[0].max(degree[1]));
+            if across < needed {
+                let advised = (side_elements as f64 * target / across).ceil() as usize;
                 out.push(Warning::CoarseZone {
                     contact: c,
                     across,
+                    needed,
+                    target,
                     side_elements,
                     advised,
                 });

@@ -72,6 +72,28 @@ pub const ZONE_ELEMENTS: f64 = 1.5;
 /// from 2.3 on, every run measured is within 4 % of Hertz, p = 3 within 1 %.
 pub const ZONE_ELEMENTS_TARGET: f64 = 3.0;
 
+/// The fewest slave elements across the main zone for slave degree
+/// `degree`: [`ZONE_ELEMENTS`], or half the support of one basis function,
+/// (p + 1)/2, if that is more, and the elements a warning advises with it.
+///
+/// Why half a support: a zone whose modelled half lies within one basis
+/// function's reach is imposed at p + 2 points per element on fewer
+/// functions than that, so the discrete pressure is over-constrained and
+/// its peak grows with the penalty. Measured on the Hertz disk against the
+/// converged p₀ (p = 3, 64²), at the penalty the below-bound warning
+/// advises: four-patch half disk p = 5, 8² (2.1 across) +14.4 %, 16² (4.3)
+/// +2.9 %; one-patch half disk p = 5, 8² (2.3 across) at factors 2.2, 3,
+/// 4.4: +4.5, +8.1, +15 %, and 32² at 4.4: +0.25 %; p = 3 and 4 on 8²
+/// (2.2 across): within 5 % at the advised factor. For p ≤ 2 it is
+/// [`ZONE_ELEMENTS`] as before.
+pub fn zone_elements(degree: usize) -> (f64, f64) {
+    let half_support = (degree as f64 + 1.0) / 2.0;
+    (
+        ZONE_ELEMENTS.max(half_support),
+        ZONE_ELEMENTS_TARGET.max(2.0 * half_support),
+    )
+}
+
 /// One zone of a contact with several ([`Warning::SeveralZones`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ZoneShare {
@@ -252,15 +274,19 @@ pub enum Warning {
         /// Every zone above [`ZONE_SHARE`], in order along the slave.
         zones: Vec<ZoneShare>,
     },
-    /// The main contact zone spans fewer than [`ZONE_ELEMENTS`] slave
-    /// elements: p₀ and the half-width are set by the element's polynomial
-    /// more than by the load.
+    /// The main contact zone spans fewer slave elements than its degree
+    /// needs ([`zone_elements`]): p₀ and the half-width are set by the
+    /// element's polynomial and the penalty more than by the load.
     CoarseZone {
         contact: usize,
         /// Slave elements across the main zone (fractional).
         across: f64,
+        /// The fewest elements across for the slave's degree, and the
+        /// number the advice aims at ([`zone_elements`]).
+        needed: f64,
+        target: f64,
         /// Elements of the slave boundary now, and the number that would
-        /// put [`ZONE_ELEMENTS_TARGET`] across the zone.
+        /// put `target` elements across the zone.
         side_elements: usize,
         advised: usize,
     },
@@ -540,11 +566,13 @@ impl std::fmt::Display for Warning {
             Warning::CoarseZone {
                 contact,
                 across,
+                needed,
+                target,
                 side_elements,
                 advised,
             } => write!(
                 f,
-                "contact[{contact}]: the main contact zone spans {across:.2} slave elements (fewer than {ZONE_ELEMENTS}), so its peak pressure and half-width may be several percent off (Hertz: up to 10 % at this resolution): refine the slave side to at least {ZONE_ELEMENTS_TARGET} elements across the zone (about {advised} elements on the slave boundary, which has {side_elements})"
+                "contact[{contact}]: the main contact zone spans {across:.2} slave elements (fewer than {needed} for its degree), so its peak pressure and half-width may be several percent off (Hertz: up to 15 % at this resolution): refine the slave side to at least {target} elements across the zone (about {advised} elements on the slave boundary, which has {side_elements})"
             ),
         }
     }

@@ -15,8 +15,8 @@ mod side_end;
 mod solution;
 
 pub use kinds::{
-    Counted, LockingRemedy, PenaltyRemedy, SideEnd, SlaveExtent, Warning, ZoneShare, LOCKING,
-    LOCKING_POISSON, LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
+    zone_elements, Counted, LockingRemedy, PenaltyRemedy, SideEnd, SlaveExtent, Warning, ZoneShare,
+    LOCKING, LOCKING_POISSON, LOOSE_PENALTY, OVER_PENALTY, PENALTY_TARGET, RESOLVED, STIFFER_SLAVE,
     ZONE_ELEMENTS, ZONE_ELEMENTS_TARGET, ZONE_SHARE,
 };
 pub use setup::{before_solve, locking, setup_warnings};
