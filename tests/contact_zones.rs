@@ -257,5 +257,8 @@ fn a_high_degree_slave_needs_more_elements_across_its_zone() {
     let n = advised.2.div_ceil(2);
     let (w, p0) = hertz("hertz_multipatch.toml", 5, n, 4.4);
     assert!(w.is_empty(), "{w:?}");
-    assert!((p0 / reference - 1.0).abs() < 0.02, "{p0} against {reference}");
+    assert!(
+        (p0 / reference - 1.0).abs() < 0.02,
+        "{p0} against {reference}"
+    );
 }

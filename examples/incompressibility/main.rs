@@ -128,6 +128,7 @@ fn main() -> Result<()> {
 
     // The facts of the three sections.
     record_setup_facts(chapter.facts(), mean.half_width)?;
+    record_mean_facts(chapter.facts(), &mean.measures)?;
     record_axis_facts(chapter.facts(), &runs)?;
     record_lame_facts(chapter.facts(), &lame.finest_rates)?;
     chapter.finish()
@@ -289,6 +290,17 @@ struct MeanStress {
     curves: Vec<Series>,
     /// Hertz's a at ν = `NEAR_HALF`.
     half_width: f64,
+    /// Per formulation: the largest distance of its mean stress from
+    /// Hertz's along the side, over Hertz's mean stress at x = 0, and its
+    /// smallest mean pressure (MPa; below zero is tension).
+    measures: Vec<MeanMeasures>,
+}
+
+/// How far one formulation's mean stress lies from Hertz's (Fig. IN2).
+struct MeanMeasures {
+    name: &'static str,
+    largest_deviation: f64,
+    least_mpa: f64,
 }
 
 /// "The pressure along the contact": the mean stress along the contact
@@ -297,6 +309,7 @@ fn solve_mean_stress() -> Result<MeanStress> {
     let nu = NEAR_HALF;
     let mut curves = Vec::new();
     let mut exact_a = 0.0;
+    let mut measures = Vec::new();
     for (k, f) in FORMULATIONS.iter().enumerate() {
         let s = scene(2, nu, f.0)?;
         let exact = hertz::analytic(&s)?;
@@ -304,13 +317,23 @@ fn solve_mean_stress() -> Result<MeanStress> {
         let problem = s.build()?;
         let sol = solve(&problem, &SolverOptions::with_kind(SolverKind::Newton))?;
         let pts = mean_pressure(&problem, &sol, 2.0 * exact.half_width)?;
+        // Hertz at the surface: σ_xx = σ_yy = −p(x), σ_zz = 2ν·(−p(x))
+        let hertz_mpa = |x_mm: f64| 2.0 * (1.0 + nu) / 3.0 * exact.pressure(x_mm * 1e-3) * 1e-6;
+        measures.push(MeanMeasures {
+            name: f.1,
+            largest_deviation: pts
+                .iter()
+                .map(|&(x, m)| (m - hertz_mpa(x)).abs())
+                .fold(0.0, f64::max)
+                / hertz_mpa(0.0),
+            least_mpa: pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+        });
         curves.push(Series::line(f.1, pts).colored(k));
         if k == 0 {
-            // Hertz at the surface: σ_xx = σ_yy = −p(x), σ_zz = 2ν·(−p(x))
             let hertz_mean = (0..=200)
                 .map(|i| {
-                    let x = 2.0 * exact.half_width * i as f64 / 200.0;
-                    (x * 1e3, 2.0 * (1.0 + nu) / 3.0 * exact.pressure(x) * 1e-6)
+                    let x_mm = 2.0 * exact.half_width * i as f64 / 200.0 * 1e3;
+                    (x_mm, hertz_mpa(x_mm))
                 })
                 .collect();
             curves.push(
@@ -323,6 +346,7 @@ fn solve_mean_stress() -> Result<MeanStress> {
     Ok(MeanStress {
         curves,
         half_width: exact_a,
+        measures,
     })
 }
 
@@ -381,6 +405,24 @@ fn record_axis_facts(f: &mut Facts, runs: &[Run]) -> Result<()> {
                 }
             }
         }
+    }
+    Ok(())
+}
+
+/// "The pressure along the contact" quotes how far each formulation's
+/// mean stress lies from Hertz's, and its least mean pressure.
+fn record_mean_facts(f: &mut Facts, measures: &[MeanMeasures]) -> Result<()> {
+    for m in measures {
+        f.number(
+            &format!("mean_deviation_{}", m.name),
+            m.largest_deviation,
+            Format::Fixed(2),
+        )?;
+        f.number(
+            &format!("mean_least_{}", m.name),
+            m.least_mpa,
+            Format::Fixed(2),
+        )?;
     }
     Ok(())
 }

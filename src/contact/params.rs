@@ -285,9 +285,9 @@ impl GaussCount {
 /// How many Gauss points each contact element or segment gets.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GaussPoints {
-    /// p + 2 for slave degree p (the library's default): one more than
-    /// the p + 1 that integrates the product of two traces on a straight
-    /// side exactly.
+    /// p + 2, with p the highest degree of the pair's bodies (the
+    /// library's default): one more than the p + 1 that integrates the
+    /// product of two traces on a straight side exactly.
     #[default]
     DegreePlusTwo,
     /// A count of the user's, as a scene's `gauss_points` key gives it.
@@ -295,7 +295,7 @@ pub enum GaussPoints {
 }
 
 impl GaussPoints {
-    /// The count for slave degree `degree`.
+    /// The count for the pair's degree `degree` (the highest of its bodies').
     pub fn count(self, degree: usize) -> usize {
         match self {
             GaussPoints::DegreePlusTwo => degree + 2,
@@ -349,7 +349,8 @@ impl Default for Nitsche {
 }
 
 impl Nitsche {
-    /// Gauss points per element or segment for slave degree `degree`.
+    /// Gauss points per element or segment for the pair's degree `degree`
+    /// (the highest of its bodies').
     pub fn points(&self, degree: usize) -> usize {
         self.gauss_points.count(degree)
     }

@@ -77,7 +77,7 @@ impl NitscheSpec {
         })
     }
 
-    /// Gauss points per element or segment for slave degree `degree`
+    /// Gauss points per element or segment for the pair's degree `degree`
     /// ([`Nitsche::points`]).
     pub fn points(&self, degree: usize) -> usize {
         self.gauss_points
