@@ -274,16 +274,18 @@ fn main() -> ExitCode {
 /// default); the library declares none, so a program built on it keeps its
 /// own, and the chapter programs get theirs from the book's companion crate.
 ///
-/// Two reasons. Speed: assembly still allocates per element (the element
-/// matrix, its DOF lists) and the triplet and column buffers grow from
-/// every thread. The per-point vectors that made glibc's malloc twice as
-/// slow are gone (`space::ElementValues`), and mimalloc still pays:
-/// assembling the CSC stiffness of Hertz p = 2 took 0.29 s with the
-/// system allocator against 0.20 s with mimalloc at 256², and 1.61 s
-/// against 0.76 s at 512² (medians of five runs of
-/// `examples/assembly_bench.rs -- assembly 5 256 512` on a shared
-/// two-core machine; before the buffers: 0.50 s and 0.27 s, 1.94 s and
-/// 1.01 s). Safety: a failed allocation ends the process with one `error:`
+/// Two reasons. Speed: the whole run still pays for the allocator. The
+/// per-point vectors that made glibc's malloc twice as slow in assembly
+/// are gone (`space::ElementValues`, reused per thread), so assembly alone
+/// now gains little: the CSC stiffness of Hertz p = 2 took 0.33–0.38 s
+/// with mimalloc against 0.34–0.36 s with the system allocator at 256²,
+/// and 1.16–1.37 s against 1.35–1.44 s at 512² (two medians of five runs
+/// each of `examples/assembly_bench.rs -- buffers 5 256 512`, 2026-12-06,
+/// two cores; in the same runs the reused buffers made the element matrices
+/// 1.01–1.24× faster than buffers made per element). But the whole
+/// `iga-contact run` of Hertz p = 2 on 256² (summary only) took 2.66–2.95 s
+/// with mimalloc against 3.35–3.41 s with the system allocator (three
+/// alternating runs each, the same day), at 9 % more peak memory. Safety: a failed allocation ends the process with one `error:`
 /// line and exit code 1 instead of Rust's abort.
 #[cfg(feature = "allocator")]
 mod allocator {

@@ -451,33 +451,6 @@ fn following_the_locking_warning_makes_hertz_right() {
     );
 }
 
-/// The solve time at 256² for both formulations, measured in one run
-/// (ν = 0.3, where both take the same path): `cargo test --release --test
-/// mixed timing -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn timing_at_256() {
-    for f in [
-        Formulation::Displacement,
-        Formulation::Mixed,
-        Formulation::Displacement,
-        Formulation::Mixed,
-    ] {
-        let mut s = common::hertz_scene(2, 256, Theta::Incomplete);
-        s.bodies[0].material.poisson = 0.3;
-        s.bodies[0].formulation = f;
-        let t = std::time::Instant::now();
-        let p = s.build().unwrap();
-        let built = t.elapsed().as_secs_f64();
-        let sol = solve(&p, &SolverOptions::with_kind(SolverKind::Bfgs)).unwrap();
-        eprintln!(
-            "{f:?}: build {built:.2} s, total {:.2} s, {} iterations",
-            t.elapsed().as_secs_f64(),
-            sol.history.len()
-        );
-    }
-}
-
 /// The mixed formulation meets issue 20's Lamé criterion at ν = 0.49999:
 /// rates within 0.2 of p + 1 (L²) and p (energy) for p = 2, 3, and errors
 /// within 25 % of the compressible ones — the continuous pressure does not
