@@ -103,6 +103,44 @@ pub fn quarter_annulus(r_in: f64, r_out: f64) -> Result<NurbsPatch> {
     NurbsPatch::new([quadratic_single_span(), lin], points, weights)
 }
 
+/// The half annulus r_in ≤ |x − c| ≤ r_out, x ≥ cx, about `center`: one
+/// patch whose arcs are exact. ξ runs counter-clockwise along the arcs
+/// from the lowest points (270°) through 0° to the highest (90°):
+/// quadratic, two 90° rational arcs joined by a double knot at ξ = 1/2
+/// (no single quadratic span reaches 180°: its middle weight would be 0).
+/// The two arcs have equal parametric speed at the junction, so the map is
+/// C¹ there although the basis is only C⁰. η runs outward (linear).
+/// Sides: `eta_min` the inner arc, `eta_max` the outer arc, `xi_min` the
+/// lower cut on x = cx, `xi_max` the upper one. det J < 0 everywhere (ξ
+/// counter-clockwise, η outward), as for [`quarter_annulus`].
+///
+/// Refined with `elements = [n, m]`, each 90° arc gets n elements (so 2n
+/// along the half) and the radial direction m.
+pub fn half_annulus(center: [f64; 2], r_in: f64, r_out: f64) -> Result<NurbsPatch> {
+    crate::error::finite("center", center[0])?;
+    crate::error::finite("center", center[1])?;
+    check_positive("inner_radius", r_in)?;
+    check_positive("outer_radius - inner_radius", r_out - r_in)?;
+    let unit = [
+        ([0.0, -1.0], 1.0),
+        ([1.0, -1.0], S),
+        ([1.0, 0.0], 1.0),
+        ([1.0, 1.0], S),
+        ([0.0, 1.0], 1.0),
+    ];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for r in [r_in, r_out] {
+        for (u, w) in unit {
+            points.push([center[0] + r * u[0], center[1] + r * u[1]]);
+            weights.push(w);
+        }
+    }
+    let arcs = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0], 2)?;
+    let lin = KnotVector::new(vec![0.0, 0.0, 1.0, 1.0], 1)?;
+    NurbsPatch::new([arcs, lin], points, weights)
+}
+
 /// A straight segment as a linear NURBS curve (a rigid flat obstacle).
 pub fn segment(a: [f64; 2], b: [f64; 2]) -> Result<NurbsCurve> {
     let k = KnotVector::new(vec![0.0, 0.0, 1.0, 1.0], 1)?;

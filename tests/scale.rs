@@ -188,6 +188,14 @@ fn two_cylinders_are_the_same_in_any_units() {
     sweep("two_cylinders.toml", None);
 }
 
+/// Conformal contact: a pin in a half annulus (a multi-patch slave on a
+/// one-patch master, both elastic, touching along the whole interface
+/// before the load).
+#[test]
+fn a_pin_in_a_ring_is_the_same_in_any_units() {
+    sweep("pin_ring.toml", None);
+}
+
 #[test]
 fn the_taylor_patch_test_is_the_same_in_any_units() {
     sweep("taylor.toml", None);

@@ -46,6 +46,15 @@ pub enum GeometrySpec {
         inner_radius: f64,
         outer_radius: f64,
     },
+    /// The half x ≥ center.x of the annulus inner_radius ≤ |x − center| ≤
+    /// outer_radius, one patch ([`geometry::half_annulus`]): sides `eta_min`
+    /// (inner arc), `eta_max` (outer arc), `xi_min` (lower cut on
+    /// x = center.x), `xi_max` (upper cut).
+    HalfAnnulus {
+        center: [f64; 2],
+        inner_radius: f64,
+        outer_radius: f64,
+    },
     /// A general patch: control point (i, j) at index i + j·n_ξ.
     Nurbs(NurbsSpec),
 }
@@ -92,6 +101,7 @@ impl GeometrySpec {
             GeometrySpec::Disk5 { .. } => "disk_5",
             GeometrySpec::HalfDisk4 { .. } => "half_disk_4",
             GeometrySpec::QuarterAnnulus { .. } => "quarter_annulus",
+            GeometrySpec::HalfAnnulus { .. } => "half_annulus",
             GeometrySpec::Nurbs(_) => "nurbs",
         }
     }
@@ -116,6 +126,7 @@ impl GeometrySpec {
             | GeometrySpec::Disk5 { radius, .. }
             | GeometrySpec::HalfDisk4 { radius, .. } => 2.0 * radius,
             GeometrySpec::QuarterAnnulus { outer_radius, .. } => outer_radius * 2f64.sqrt(),
+            GeometrySpec::HalfAnnulus { outer_radius, .. } => 2.0 * outer_radius,
             GeometrySpec::Nurbs(n) => span(&mut n.control_points.iter().copied()),
         }
     }
@@ -129,7 +140,8 @@ impl GeometrySpec {
             | GeometrySpec::HalfDisk { radius, .. }
             | GeometrySpec::Disk5 { radius, .. }
             | GeometrySpec::HalfDisk4 { radius, .. } => ("radius", Some(*radius)),
-            GeometrySpec::QuarterAnnulus { outer_radius, .. } => {
+            GeometrySpec::QuarterAnnulus { outer_radius, .. }
+            | GeometrySpec::HalfAnnulus { outer_radius, .. } => {
                 ("outer_radius", Some(*outer_radius))
             }
             GeometrySpec::Nurbs(_) => ("control_points", None),
@@ -144,7 +156,8 @@ impl GeometrySpec {
             | GeometrySpec::HalfDisk { .. }
             | GeometrySpec::Disk5 { .. }
             | GeometrySpec::HalfDisk4 { .. }
-            | GeometrySpec::QuarterAnnulus { .. } => 2,
+            | GeometrySpec::QuarterAnnulus { .. }
+            | GeometrySpec::HalfAnnulus { .. } => 2,
             GeometrySpec::Nurbs(n) => n.degree[0].max(n.degree[1]),
         }
     }
@@ -209,16 +222,28 @@ impl GeometrySpec {
             GeometrySpec::QuarterAnnulus {
                 inner_radius,
                 outer_radius,
+            } => annulus_radii(&f, *inner_radius, *outer_radius)?,
+            GeometrySpec::HalfAnnulus {
+                center,
+                inner_radius,
+                outer_radius,
             } => {
-                positive(format!("{f}.inner_radius"), *inner_radius)?;
-                positive(format!("{f}.outer_radius"), *outer_radius)?;
-                if outer_radius <= inner_radius {
-                    return Err(Error::invalid(
+                finite_point(&format!("{f}.center"), *center)?;
+                annulus_radii(&f, *inner_radius, *outer_radius)?;
+                finite_point(
+                    &format!("{f}.center"),
+                    [
+                        center[0] + 2.0 * outer_radius,
+                        center[1] + 2.0 * outer_radius,
+                    ],
+                )
+                .map_err(|_| {
+                    Error::invalid(
                         format!("{f}.outer_radius"),
                         show(*outer_radius),
-                        format!("must exceed inner_radius = {inner_radius}"),
-                    ));
-                }
+                        "too large for the center: the control points overflow",
+                    )
+                })?;
             }
             GeometrySpec::Nurbs(n) => {
                 n.knot_vectors(&f)?;
@@ -264,6 +289,11 @@ impl GeometrySpec {
                 inner_radius,
                 outer_radius,
             } => geometry::quarter_annulus(inner_radius, outer_radius),
+            GeometrySpec::HalfAnnulus {
+                center,
+                inner_radius,
+                outer_radius,
+            } => geometry::half_annulus(center, inner_radius, outer_radius),
             GeometrySpec::Nurbs(ref n) => {
                 let f = format!("{f}.nurbs");
                 let knots = n.knot_vectors(&f)?;
@@ -273,6 +303,21 @@ impl GeometrySpec {
             }
         }
     }
+}
+
+/// The radii of an annulus: both positive and finite, the outer one the
+/// larger; `f` is the path of the geometry's table.
+fn annulus_radii(f: &str, inner: f64, outer: f64) -> Result<()> {
+    positive(format!("{f}.inner_radius"), inner)?;
+    positive(format!("{f}.outer_radius"), outer)?;
+    if outer <= inner {
+        return Err(Error::invalid(
+            format!("{f}.outer_radius"),
+            show(outer),
+            format!("must exceed inner_radius = {inner}"),
+        ));
+    }
+    Ok(())
 }
 
 impl NurbsSpec {

@@ -26,6 +26,7 @@ chapters! {
     taylor => "taylor.md",
     hertz => "hertz.md",
     two_cylinders => "two_cylinders.md",
+    pin_ring => "pin_ring.md",
     iga_vs_fem => "iga_vs_fem.md",
     error_vs_time => "error_vs_time.md",
     solvers => "solvers.md",

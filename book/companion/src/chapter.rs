@@ -102,6 +102,7 @@ pub const PROGRAMS: &[Program] = &[
     program("taylor", "taylor", Cost::Quick),
     program("hertz", "hertz", Cost::Quick),
     program("two_cylinders", "two_cylinders", Cost::Quick),
+    program("pin_ring", "pin_ring", Cost::Quick),
     program("iga_vs_fem", "iga_vs_fem", Cost::Quick),
     program("error_vs_time", "error_vs_time", Cost::Quick),
     program("getfem_peer", "getfem_peer", Cost::Heavy),
