@@ -97,7 +97,9 @@ impl Compound {
 
 // ANCHOR: setup
 /// The compound cylinder's ladder: k, with 3k × k elements on the inner
-/// ring and 2k × k on the outer one (never matching along the interface).
+/// ring and 2k × k on the outer one: not matching along the interface,
+/// though both share the knots at ξ = m/k (the quarter annuli map the
+/// parameter to the angle alike).
 const COMPOUND_LADDER: [usize; 6] = [1, 2, 4, 8, 16, 32];
 
 /// The pin's ladder: n, with the pin refined [n, n/2] (n elements along
