@@ -217,17 +217,24 @@ fn run(n: usize) -> iga_contact::Result<Timing> {
     })
 }
 
+/// `[reps] n1 n2 ...` of a timing mode: the run count (`default` when
+/// only sizes are given; at least 1) and the meshes.
+fn reps_and_sizes(
+    args: &[String],
+    default: usize,
+) -> Result<(usize, Vec<usize>), std::num::ParseIntError> {
+    let (reps, sizes) = match args {
+        [reps, sizes @ ..] if !sizes.is_empty() => (reps.parse()?, sizes),
+        _ => (default, args),
+    };
+    let sizes = sizes.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
+    Ok((reps.max(1), sizes))
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("buffers") {
-        args.remove(0);
-        let reps: usize = if args.len() > 1 {
-            args.remove(0).parse()?
-        } else {
-            5
-        };
-        let reps = reps.max(1);
-        let sizes: Vec<usize> = args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
+        let (reps, sizes) = reps_and_sizes(&args[1..], 5)?;
         println!("| elements | runs | element matrices, fresh buffers s | reused buffers s | fresh ÷ reused | CSC assembly s |");
         println!("|---|---:|---:|---:|---:|---:|");
         for n in sizes {
@@ -240,14 +247,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     if args.first().map(String::as_str) == Some("assembly") {
-        args.remove(0);
-        let reps: usize = if args.len() > 1 {
-            args.remove(0).parse()?
-        } else {
-            7
-        };
-        let reps = reps.max(1);
-        let sizes: Vec<usize> = args.iter().map(|a| a.parse()).collect::<Result<_, _>>()?;
+        let (reps, sizes) = reps_and_sizes(&args[1..], 7)?;
         println!("| elements | runs | triplets: median (fastest–slowest) s | CSC: median (fastest–slowest) s |");
         println!("|---|---:|---:|---:|");
         for n in sizes {

@@ -41,7 +41,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some((&reps, sizes)) if !sizes.is_empty() => (reps.max(1), sizes.to_vec()),
         _ => (3, vec![256]),
     };
-    println!("| elements | formulation | build s | solve s | total s | stiffness entries | iterations |");
+    println!(
+        "| elements | formulation | build s | solve s | total s | stiffness entries | iterations |"
+    );
     println!("|---|---|---:|---:|---:|---:|---:|");
     for n in sizes {
         let mut t = [Timing::default(), Timing::default()];
