@@ -10,7 +10,7 @@ mod common;
 use common::scene;
 use iga_contact::nurbs::Side;
 use iga_contact::post::contact_resultant;
-use iga_contact::scene::{Component, RefineSpec, Scene};
+use iga_contact::scene::{Component, RefineSpec, Scene, SupportAt};
 use iga_contact::solver::{solve, Factorisation, IterationSpace, SolverKind, SolverOptions, Start};
 use iga_contact::Error;
 
@@ -176,7 +176,7 @@ fn no_free_dof_is_refused_as_input() {
         (Side::EtaMax, Component::X),
         (Side::XiMax, Component::X),
     ] {
-        more.side = Some(side);
+        more.at = SupportAt::Side(side);
         more.component = comp;
         s.supports.push(more.clone());
     }

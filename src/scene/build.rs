@@ -4,7 +4,7 @@
 use super::patches::discretise_error;
 use super::rules::show;
 use super::validate::Valid;
-use super::{MasterSpec, Scene};
+use super::{MasterSpec, Scene, SlaveAt, SupportAt};
 use crate::assembly::Load;
 use crate::contact::pair::checked_contact_points;
 use crate::contact::{ContactPair, Contacts, Master};
@@ -141,21 +141,20 @@ impl Valid<'_> {
         }
         for (i, s) in self.supports.iter().enumerate() {
             let c = s.component.index();
-            match (s.side, &s.boundary, s.point) {
-                (Some(side), _, _) => {
-                    dofs.fix_side(idx(&s.body), side, c, s.value)?;
+            match &s.at {
+                SupportAt::Side(side) => {
+                    dofs.fix_side(idx(&s.body), *side, c, s.value)?;
                 }
-                (None, Some(name), _) => {
+                SupportAt::Boundary(name) => {
                     let f = format!("support[{i}].boundary");
                     for (p, side) in self.boundary_of(names[s.body.as_str()], &f, name)? {
                         dofs.fix_side(idx(&s.body) + p, side, c, s.value)?;
                     }
                 }
-                (None, None, Some(x)) => {
-                    let (p, cp) = corner_at(&bodies, patches_of(&s.body), x, i, &s.body)?;
+                SupportAt::Point(x) => {
+                    let (p, cp) = corner_at(&bodies, patches_of(&s.body), *x, i, &s.body)?;
                     dofs.fix(p, cp, c, s.value)?;
                 }
-                (None, None, None) => unreachable!("validated: a side, boundary or point"),
             }
         }
         let map = dofs.build();
@@ -186,8 +185,8 @@ impl Valid<'_> {
         let mut pairs = Vec::with_capacity(self.contacts.len());
         let mut sizes = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
-            let pieces = match (c.slave_side, &c.slave_boundary) {
-                (Some(side), _) => {
+            let pieces = match &c.slave_at {
+                &SlaveAt::Side(side) => {
                     let slave = idx(&c.slave);
                     if degenerate_side(&bodies[slave].space.patch, side) {
                         return Err(Error::invalid(
@@ -198,14 +197,13 @@ impl Valid<'_> {
                     }
                     vec![(slave, side)]
                 }
-                (None, Some(name)) => {
+                SlaveAt::Boundary(name) => {
                     let f = format!("contact[{i}].slave_boundary");
                     self.boundary_of(names[c.slave.as_str()], &f, name)?
                         .into_iter()
                         .map(|(p, side)| (idx(&c.slave) + p, side))
                         .collect()
                 }
-                (None, None) => unreachable!("validated: a slave side or boundary"),
             };
             let master = match &c.master {
                 MasterSpec::RigidSegment { from, to } => {

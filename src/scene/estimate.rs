@@ -5,7 +5,7 @@ mod free_dofs;
 
 use super::patches::in_body;
 use super::validate::Valid;
-use super::{MasterSpec, RefineSpec, Scene};
+use super::{MasterSpec, RefineSpec, Scene, SlaveAt};
 use crate::error::Result;
 use crate::nurbs::{KnotVector, NurbsPatch};
 use crate::resources::{BodySize, Estimate, Factoring, PairSize};
@@ -45,14 +45,13 @@ impl Valid<'_> {
         let mut pieces = Vec::new();
         for c in &self.contacts {
             let b = names[c.slave.as_str()];
-            match (c.slave_side, &c.slave_boundary) {
-                (Some(side), _) => pieces.push((c, first[b], side)),
-                (None, Some(name)) => {
+            match &c.slave_at {
+                &SlaveAt::Side(side) => pieces.push((c, first[b], side)),
+                SlaveAt::Boundary(name) => {
                     for (p, side) in self.boundary_of(b, "slave_boundary", name)? {
                         pieces.push((c, first[b] + p, side));
                     }
                 }
-                (None, None) => unreachable!("validated: a slave side or boundary"),
             }
         }
         let pairs = pieces

@@ -7,7 +7,11 @@
 //! 1. **syntax**: the text must be TOML (errors give line and column);
 //! 2. **shape**: every table must have exactly the known keys with values of
 //!    the right type (`deny_unknown_fields` everywhere, paths tracked by
-//!    `serde_path_to_error`);
+//!    `serde_path_to_error`), and a table that names one thing by one of
+//!    several keys (a support's `side`, `boundary` or `point`, a contact's
+//!    `slave_side` or `slave_boundary`, a master's `rigid_segment` or
+//!    `body`) must give exactly one, read into an enum ([`SupportAt`],
+//!    [`SlaveAt`], [`MasterSpec`]);
 //! 3. **validation**: every number must be finite and in its admissible
 //!    range, every name must refer to an existing body, and so on
 //!    ([`Scene::validate`]).
@@ -57,7 +61,7 @@ pub use nitsche::NitscheSpec;
 pub use refine::RefineSpec;
 pub use schema::{
     files, BodySpec, Component, ContactSpec, LoadSpec, MasterSpec, OutputSpec, Scene, SegmentSpec,
-    SupportSpec, MAX_DEGREE, MAX_ELEMENTS, MAX_LAGRANGE, MAX_VTU_SUBDIVISIONS,
+    SlaveAt, SupportAt, SupportSpec, MAX_DEGREE, MAX_ELEMENTS, MAX_LAGRANGE, MAX_VTU_SUBDIVISIONS,
 };
 pub use summary::RunReport;
 

@@ -7,7 +7,7 @@
 //! floor 1e-4 below the first carried 37.5 % of the load), so the scene is
 //! refused before anything is built.
 
-use super::{MasterSpec, Scene};
+use super::{MasterSpec, Scene, SlaveAt};
 use crate::error::{Error, Result};
 use crate::nurbs::Side;
 use std::collections::HashMap;
@@ -23,13 +23,12 @@ impl Scene {
             .contacts
             .iter()
             .enumerate()
-            .map(|(i, c)| match (c.slave_side, &c.slave_boundary) {
-                (Some(side), _) => Ok(vec![(0, side)]),
-                (None, Some(name)) => {
+            .map(|(i, c)| match &c.slave_at {
+                &SlaveAt::Side(side) => Ok(vec![(0, side)]),
+                SlaveAt::Boundary(name) => {
                     let b = names[c.slave.as_str()];
                     self.boundary_of(b, &format!("contact[{i}].slave_boundary"), name)
                 }
-                (None, None) => Ok(Vec::new()),
             })
             .collect::<Result<_>>()?;
         for j in 1..self.contacts.len() {
@@ -95,8 +94,8 @@ fn swapped(a: &super::ContactSpec, b: &super::ContactSpec) -> bool {
         ) => {
             *bm == a.slave
                 && *am == b.slave
-                && a.slave_side == Some(*b_side)
-                && b.slave_side == Some(*a_side)
+                && a.slave_at == SlaveAt::Side(*b_side)
+                && b.slave_at == SlaveAt::Side(*a_side)
         }
         _ => false,
     }

@@ -1,6 +1,8 @@
 //! The scene file's tables as Rust types: what `serde` reads, key for key.
 //! The either-or tables with their own reading are in `refine.rs`
-//! and here ([`MasterSpec`]); values are checked in `validate.rs`.
+//! and here ([`MasterSpec`], [`SupportSpec`]'s [`SupportAt`] and
+//! [`ContactSpec`]'s [`SlaveAt`]): each is read from a raw table into an
+//! enum when the scene is parsed; values are checked in `validate.rs`.
 
 use crate::assembly::Load;
 use crate::material::{Formulation, Material};
@@ -94,25 +96,94 @@ impl Component {
     }
 }
 
-/// One `[[support]]`: `component` of every control point of `side` is
-/// prescribed to `value` (default 0).
+/// One `[[support]]`: `component` of every control point where it acts
+/// (`at`) is prescribed to `value` (default 0).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "RawSupport", into = "RawSupport")]
 pub struct SupportSpec {
     pub body: String,
-    /// A side of a one-patch body.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<Side>,
-    /// A named boundary of a multi-patch body (every piece of it).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub boundary: Option<String>,
-    /// A point: the control point of the body nearest it, accepted only
-    /// where that control point lies on the body (a patch corner).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub point: Option<[f64; 2]>,
+    /// Where it acts, read from the one of the keys `side`, `boundary` and
+    /// `point` the table gives.
+    pub at: SupportAt,
     pub component: Component,
-    #[serde(default)]
     pub value: f64,
+}
+
+/// Where a `[[support]]` acts. The file names it by exactly one of three
+/// keys; which one is read once, when the scene is parsed, so that a
+/// support in hand always names one place and nothing after the parse
+/// asks again.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SupportAt {
+    /// `side = SIDE`: a side of a one-patch body.
+    Side(Side),
+    /// `boundary = NAME`: a named boundary of a multi-patch body (every
+    /// piece of it).
+    Boundary(String),
+    /// `point = [x, y]`: the control point of the body nearest it, accepted
+    /// only where that control point lies on the body (a patch corner).
+    Point([f64; 2]),
+}
+
+/// The `[[support]]` table as written, before the choice of keys is read.
+#[derive(Clone, Serialize, Deserialize)]
+// type errors name the type it reads into, as they did before it existed
+#[serde(deny_unknown_fields, expecting = "struct SupportSpec")]
+struct RawSupport {
+    body: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    side: Option<Side>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    boundary: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    point: Option<[f64; 2]>,
+    component: Component,
+    #[serde(default)]
+    value: f64,
+}
+
+impl TryFrom<RawSupport> for SupportSpec {
+    type Error = TableError;
+
+    fn try_from(s: RawSupport) -> Result<Self, TableError> {
+        let at = match (s.side, s.boundary, s.point) {
+            (Some(side), None, None) => SupportAt::Side(side),
+            (None, Some(name), None) => SupportAt::Boundary(name),
+            (None, None, Some(x)) => SupportAt::Point(x),
+            _ => {
+                return Err(TableError::new(
+                    "",
+                    format!("body {:?}", s.body),
+                    "needs exactly one of `side`, `boundary` or `point`",
+                ))
+            }
+        };
+        Ok(SupportSpec {
+            body: s.body,
+            at,
+            component: s.component,
+            value: s.value,
+        })
+    }
+}
+
+impl From<SupportSpec> for RawSupport {
+    fn from(s: SupportSpec) -> Self {
+        let (mut side, mut boundary, mut point) = (None, None, None);
+        match s.at {
+            SupportAt::Side(x) => side = Some(x),
+            SupportAt::Boundary(name) => boundary = Some(name),
+            SupportAt::Point(x) => point = Some(x),
+        }
+        RawSupport {
+            body: s.body,
+            side,
+            boundary,
+            point,
+            component: s.component,
+            value: s.value,
+        }
+    }
 }
 
 /// One `[[load]]`, a table with one key, the kind:
@@ -131,20 +202,85 @@ pub(super) fn load_kind<B>(l: &Load<B>) -> &'static str {
 
 /// One `[[contact]]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "RawContact", into = "RawContact")]
 pub struct ContactSpec {
+    /// The name of the slave body.
     pub slave: String,
-    /// A side of a one-patch slave.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub slave_side: Option<Side>,
-    /// A named boundary of a multi-patch slave: one contact pair per
-    /// piece, in order along the boundary.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub slave_boundary: Option<String>,
+    /// Where on the slave the pair is, read from the one of the keys
+    /// `slave_side` and `slave_boundary` the table gives.
+    pub slave_at: SlaveAt,
     pub master: MasterSpec,
     /// θ, the penalty factor and the integration rule of the pair.
-    #[serde(default)]
     pub nitsche: NitscheSpec,
+}
+
+/// Where on its slave body a `[[contact]]` is. The file names it by exactly
+/// one of two keys; which one is read once, when the scene is parsed, so
+/// that a contact in hand always names one slave part and nothing after the
+/// parse asks again.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SlaveAt {
+    /// `slave_side = SIDE`: a side of a one-patch slave.
+    Side(Side),
+    /// `slave_boundary = NAME`: a named boundary of a multi-patch slave:
+    /// one contact pair per piece, in order along the boundary.
+    Boundary(String),
+}
+
+/// The `[[contact]]` table as written, before the choice of keys is read.
+#[derive(Clone, Serialize, Deserialize)]
+// type errors name the type it reads into, as they did before it existed
+#[serde(deny_unknown_fields, expecting = "struct ContactSpec")]
+struct RawContact {
+    slave: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    slave_side: Option<Side>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    slave_boundary: Option<String>,
+    master: MasterSpec,
+    #[serde(default)]
+    nitsche: NitscheSpec,
+}
+
+impl TryFrom<RawContact> for ContactSpec {
+    type Error = TableError;
+
+    fn try_from(c: RawContact) -> Result<Self, TableError> {
+        let slave_at = match (c.slave_side, c.slave_boundary) {
+            (Some(side), None) => SlaveAt::Side(side),
+            (None, Some(name)) => SlaveAt::Boundary(name),
+            _ => {
+                return Err(TableError::new(
+                    "slave_side",
+                    format!("slave {:?}", c.slave),
+                    "needs exactly one of `slave_side` (a one-patch body) or `slave_boundary` \
+                     (a multi-patch body)",
+                ))
+            }
+        };
+        Ok(ContactSpec {
+            slave: c.slave,
+            slave_at,
+            master: c.master,
+            nitsche: c.nitsche,
+        })
+    }
+}
+
+impl From<ContactSpec> for RawContact {
+    fn from(c: ContactSpec) -> Self {
+        let (slave_side, slave_boundary) = match c.slave_at {
+            SlaveAt::Side(side) => (Some(side), None),
+            SlaveAt::Boundary(name) => (None, Some(name)),
+        };
+        RawContact {
+            slave: c.slave,
+            slave_side,
+            slave_boundary,
+            master: c.master,
+            nitsche: c.nitsche,
+        }
+    }
 }
 
 /// The master of a contact pair: either `{ rigid_segment = { from, to } }`

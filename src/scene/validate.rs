@@ -3,7 +3,7 @@
 
 use super::patches::multipatch_lagrange;
 use super::rules::{finite, finite_point, in_range};
-use super::{load_kind, MasterSpec, RefineSpec, Scene, MAX_VTU_SUBDIVISIONS};
+use super::{load_kind, MasterSpec, RefineSpec, Scene, SlaveAt, SupportAt, MAX_VTU_SUBDIVISIONS};
 use crate::assembly::Load;
 use crate::contact::Nitsche;
 use crate::error::{Error, Result};
@@ -132,19 +132,12 @@ impl Scene {
             let f = format!("support[{i}]");
             let b = self.resolve(&names, format!("{f}.body"), &s.body)?;
             finite(format!("{f}.value"), s.value)?;
-            match (s.side, &s.boundary, s.point) {
-                (Some(side), None, None) => self.one_patch(b, &format!("{f}.side"), side.name())?,
-                (None, Some(name), None) => {
+            match &s.at {
+                SupportAt::Side(side) => self.one_patch(b, &format!("{f}.side"), side.name())?,
+                SupportAt::Boundary(name) => {
                     self.boundary_of(b, &format!("{f}.boundary"), name)?;
                 }
-                (None, None, Some(x)) => finite_point(&format!("{f}.point"), x)?,
-                _ => {
-                    return Err(Error::invalid(
-                        f,
-                        format!("body {:?}", s.body),
-                        "needs exactly one of `side`, `boundary` or `point`",
-                    ))
-                }
+                SupportAt::Point(x) => finite_point(&format!("{f}.point"), *x)?,
             }
         }
         for (i, l) in self.loads.iter().enumerate() {
@@ -165,20 +158,12 @@ impl Scene {
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
             let slave = self.resolve(&names, format!("{f}.slave"), &c.slave)?;
-            match (c.slave_side, &c.slave_boundary) {
-                (Some(side), None) => {
+            match &c.slave_at {
+                SlaveAt::Side(side) => {
                     self.one_patch(slave, &format!("{f}.slave_side"), side.name())?
                 }
-                (None, Some(name)) => {
+                SlaveAt::Boundary(name) => {
                     self.boundary_of(slave, &format!("{f}.slave_boundary"), name)?;
-                }
-                _ => {
-                    return Err(Error::invalid(
-                        format!("{f}.slave_side"),
-                        format!("slave {:?}", c.slave),
-                        "needs exactly one of `slave_side` (a one-patch body) or `slave_boundary` \
-                         (a multi-patch body)",
-                    ))
                 }
             }
             match &c.master {

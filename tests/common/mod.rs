@@ -8,7 +8,7 @@ pub mod block;
 use iga_contact::assembly::Load;
 use iga_contact::contact::{Integration, Theta};
 use iga_contact::problem::Problem;
-use iga_contact::scene::{GeometrySpec, RefineSpec, Scene};
+use iga_contact::scene::{GeometrySpec, RefineSpec, Scene, SlaveAt};
 use iga_contact::solver::history::History;
 use iga_contact::solver::{solve, SolverKind, SolverOptions};
 use std::path::PathBuf;
@@ -20,9 +20,12 @@ pub fn swapped(mut s: Scene) -> Scene {
     let iga_contact::scene::MasterSpec::Body { body, side } = c.master.clone() else {
         panic!("the first contact has a rigid master: nothing to swap");
     };
+    let SlaveAt::Side(slave_side) = std::mem::replace(&mut c.slave_at, SlaveAt::Side(side)) else {
+        panic!("the first contact's slave is a boundary: no side to swap");
+    };
     c.master = iga_contact::scene::MasterSpec::Body {
         body: std::mem::replace(&mut c.slave, body),
-        side: c.slave_side.replace(side).unwrap(),
+        side: slave_side,
     };
     s
 }

@@ -7,7 +7,7 @@ use crate::common::shipped_text;
 use crate::{measured, rel, run, R};
 use iga_contact::material::{Material, Plane};
 use iga_contact::post::hertz::{Cylinder, Hertz};
-use iga_contact::scene::{RefineSpec, Scene};
+use iga_contact::scene::{RefineSpec, Scene, SupportAt};
 use iga_contact::solver::solve;
 use std::f64::consts::PI;
 
@@ -72,7 +72,7 @@ fn the_full_disk_on_point_supports_matches_the_half_disk_with_symmetry() {
     assert!(shipped
         .supports
         .iter()
-        .all(|s| s.point.is_some() && s.side.is_none() && s.boundary.is_none()));
+        .all(|s| matches!(s.at, SupportAt::Point(_))));
     let mut gaps = Vec::new();
     for n in [16, 32] {
         let (p_full, a_full, w) = measure("disk_full.toml", [n, n / 2]);

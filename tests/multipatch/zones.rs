@@ -4,6 +4,7 @@
 //! a longer slave boundary) clears it; every warning names the one contact.
 
 use crate::{common, measured, refined, rel, run, R};
+use iga_contact::scene::SlaveAt;
 use iga_contact::solver::{solve, Warning};
 
 #[test]
@@ -115,7 +116,7 @@ fn a_zone_cut_at_the_end_of_a_one_patch_piece_is_warned_and_the_advice_clears_it
                 x.penalty = iga_contact::contact::PenaltyKind::Sharp;
                 x.penalty_factor = 2.0;
             });
-        scene.contacts[0].slave_boundary = Some(boundary.into());
+        scene.contacts[0].slave_at = SlaveAt::Boundary(boundary.into());
         common::scale_body_force(&mut scene, 16.0);
         let (m, warnings) = measured(&scene).unwrap();
         (m.half_width, warnings)

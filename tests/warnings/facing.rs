@@ -2,7 +2,7 @@
 //! it) is warned, and the advised slave side fixes the answer.
 
 use crate::{outcome, RIGHT};
-use iga_contact::scene::Scene;
+use iga_contact::scene::{Scene, SlaveAt};
 use iga_contact::solver::warning::PenaltyRemedy;
 use iga_contact::solver::{solve, Warning};
 
@@ -15,7 +15,7 @@ fn a_slave_that_closes_where_it_faces_away_is_warned_and_the_advice_fixes_it() {
     // on such gaps would be advice that leaves the answer as wrong)
     let shipped = companion::shipped("disk_full.toml").unwrap();
     let mut upper = shipped.clone();
-    upper.contacts[0].slave_boundary = Some("arc_upper".into());
+    upper.contacts[0].slave_at = SlaveAt::Boundary("arc_upper".into());
     upper.output = Default::default();
     let problem = upper.build().unwrap();
     let sol = solve(&problem, &upper.solver).unwrap();
@@ -28,7 +28,7 @@ fn a_slave_that_closes_where_it_faces_away_is_warned_and_the_advice_fixes_it() {
     assert!(text.contains("faces away from its master"), "{text}");
     // followed: the side of the disk that faces the floor
     let mut lower = upper.clone();
-    lower.contacts[0].slave_boundary = Some("arc_lower".into());
+    lower.contacts[0].slave_at = SlaveAt::Boundary("arc_lower".into());
     let (warnings, error) = outcome(&lower);
     assert!(warnings.is_empty(), "{warnings:?}");
     assert!(error.abs() < RIGHT, "p₀ {error:+.3e} off Hertz");

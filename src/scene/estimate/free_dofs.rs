@@ -12,6 +12,7 @@
 //! pieces are tracked.
 
 use super::super::validate::Valid;
+use super::super::SupportAt;
 use crate::error::Result;
 use crate::nurbs::{NurbsPatch, Side};
 use crate::resources::BodySize;
@@ -138,18 +139,17 @@ impl Valid<'_> {
         for (k, s) in self.supports.iter().enumerate() {
             let b = names[s.body.as_str()];
             let comp = s.component.index();
-            let sides: Vec<(usize, Side)> = match (s.side, &s.boundary, s.point) {
-                (Some(side), _, _) => vec![(0, side)],
-                (None, Some(name), _) => {
+            let sides: Vec<(usize, Side)> = match &s.at {
+                &SupportAt::Side(side) => vec![(0, side)],
+                SupportAt::Boundary(name) => {
                     self.boundary_of(b, &format!("support[{k}].boundary"), name)?
                 }
-                (None, None, Some(x)) => {
+                &SupportAt::Point(x) => {
                     if let Some((p, c)) = nearest_corner(&exact[b], x) {
                         pieces.hold(PIECES * (first[b] + p) + c, comp);
                     }
                     Vec::new()
                 }
-                (None, None, None) => unreachable!("validated: a side, boundary or point"),
             };
             for (p, side) in sides {
                 let g = PIECES * (first[b] + p);
