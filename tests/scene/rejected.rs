@@ -115,6 +115,11 @@ fn rejected() -> Vec<Reject> {
         reject(base_with("slave_side = \"eta_min\"", "slave_side = \"bottom\""), "contact[0].slave_side", "\"bottom\"")
             .says(&["eta_min"]),
         reject(base_with("side = \"eta_min\"", "side = \"south\""), "support[0].side", "\"south\""),
+        // where a support or a slave acts: exactly one of its keys
+        reject(base_with("side = \"eta_min\"\ncomponent = \"y\"", "side = \"eta_min\"\npoint = [0.0, 0.0]\ncomponent = \"y\""), "support[0]", "body \"lower\"")
+            .says(&["needs exactly one of `side`, `boundary` or `point`"]),
+        reject(base_with("slave_side = \"eta_min\"", "slave_side = \"eta_min\"\nslave_boundary = \"arc\""), "contact[0].slave_side", "slave \"upper\"")
+            .says(&["needs exactly one of `slave_side`"]),
         // materials and finite numbers
         reject(base_with("young = 1.0e9", "young = -1.0"), "body[0].material.young", "-1"),
         reject(base_with("young = 1.0e9", "young = 0.0"), "body[0].material.young", "0"),
