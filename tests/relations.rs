@@ -165,7 +165,7 @@ const NO_RELATION: &[(&str, &str, &str)] = &[
     ),
     (
         "hertz.md",
-        "so only rows of the same start compare",
+        "so only rows of the same options compare",
         "a reading instruction for Table H5",
     ),
     (
