@@ -270,8 +270,8 @@ fn pin_center(scene: &Scene) -> Result<[f64; 2]> {
 fn compound_table(ladder: &[Run], q: f64) -> Result<Table> {
     let mut table = Table::new(vec![
         Column::plain("k", "k"),
-        Column::plain("inner_along", "inner, along"),
-        Column::plain("outer_along", "outer, along"),
+        Column::plain("inner_along", "inner, along").csv_only(),
+        Column::plain("outer_along", "outer, along").csv_only(),
         Column::plain("dofs", "DOFs"),
         Column::plain("iterations", "its"),
         Column::new("p_min", "min p", Unit::Megapascal, Format::Fixed(4)),
