@@ -262,3 +262,35 @@ fn a_high_degree_slave_needs_more_elements_across_its_zone() {
         "{p0} against {reference}"
     );
 }
+
+/// Where the scene sits does not change its measures: Hertz moved 10⁷ m
+/// along x (map-grid coordinates) keeps p₀ and the half-width of the scene
+/// at the origin. The half-width was halved from about 3·10⁶ m on: the
+/// round-off of the coordinates hid the symmetry line, and the zone [0, a]
+/// was measured as a whole zone.
+#[test]
+fn the_measures_do_not_depend_on_where_the_scene_sits() {
+    let at = |x: f64| {
+        let text = std::fs::read_to_string(companion::source_root().join("data/scenes/hertz.toml"))
+            .unwrap()
+            .replace("center = [0.0, 0.2]", &format!("center = [{x:?}, 0.2]"))
+            .replace(
+                "from = [-0.2, 0.0], to = [0.4, 0.0]",
+                &format!("from = [{:?}, 0.0], to = [{:?}, 0.0]", x - 0.2, x + 0.4),
+            );
+        let mut scene = Scene::from_toml_str(&text).unwrap();
+        scene.output = Default::default();
+        scene.output.summary = true;
+        let (_, contact) = run(&scene, &format!("moved-{x}"));
+        (num(&contact, "p0"), num(&contact, "half_width"))
+    };
+    let (p0, a) = at(0.0);
+    for x in [3e6, 1e7, -1e8] {
+        let (p0_x, a_x) = at(x);
+        assert!(
+            (p0_x / p0 - 1.0).abs() < 1e-5,
+            "x = {x}: {p0_x} against {p0}"
+        );
+        assert!((a_x / a - 1.0).abs() < 1e-5, "x = {x}: {a_x} against {a}");
+    }
+}

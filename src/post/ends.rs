@@ -94,7 +94,12 @@ fn end_kind(problem: &Problem, slave: usize, side: Side, corner: [f64; 2]) -> Si
         .iter()
         .map(|&p| dist(p))
         .fold(0.0, f64::max);
-    let tol = 1e-9 * size;
+    // relative to the body's size, and at least the round-off of the
+    // coordinates themselves: a scene far from the origin (map-grid
+    // coordinates, 3e6 m) carries ~1e-9 m of it, more than 1e-9 of a
+    // 0.4 m body, and its symmetry line was missed (half_width halved)
+    let magnitude = corner[0].abs().max(corner[1].abs());
+    let tol = 1e-9 * size + 64.0 * f64::EPSILON * magnitude;
     let symmetric = (0..bodies.len())
         .filter(|&b| map.group(b) == group)
         .flat_map(|b| Side::ALL.map(|s| (b, s)))
