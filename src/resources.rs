@@ -432,7 +432,7 @@ pub fn parse_size(text: &str) -> Result<u64> {
         Err(Error::invalid(
             "--max-memory",
             text,
-            "must be a size such as 8G, 512M or a number of bytes",
+            "must be a positive size such as 8G, 512M or a number of bytes (at least 1)",
         ))
     }
 }
