@@ -5,6 +5,8 @@
 //! meshes; and the shipped pin in a ring, which `check` and `run` pass
 //! without a warning.
 
+mod common;
+
 use iga_contact::geometry::half_annulus;
 use iga_contact::nurbs::Side;
 use iga_contact::post::PressureProfile;
@@ -70,12 +72,7 @@ fn half_annulus_area_is_half_the_annulus() {
         .k_refined(2, [3, 2])
         .unwrap();
     let space = iga_contact::space::Space::new(patch, Some(6)).unwrap();
-    let area: f64 = space
-        .elements
-        .iter()
-        .flat_map(|e| space.quadrature(e).unwrap())
-        .map(|q| q.weight)
-        .sum();
+    let area = common::area(&space);
     let exact = std::f64::consts::PI * (r_out * r_out - r_in * r_in) / 2.0;
     assert!((area - exact).abs() < 1e-12 * exact, "{area} vs {exact}");
 }

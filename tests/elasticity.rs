@@ -2,6 +2,8 @@
 //! element stiffness properties, load vectors, material validation, and a
 //! reduced Lamé convergence study.
 
+mod common;
+
 use iga_contact::assembly::{self, Load};
 use iga_contact::dofs::{Body, DofMap};
 use iga_contact::geometry::{half_disk, quadrilateral, rectangle};
@@ -423,12 +425,7 @@ fn orientation_reversing_maps_are_accepted_and_folds_rejected() {
         .unwrap();
     let space = Space::new(patch, Some(8)).unwrap();
     assert_eq!(space.orientation(), -1.0);
-    let area: f64 = space
-        .elements
-        .iter()
-        .flat_map(|e| space.quadrature(e).unwrap())
-        .map(|q| q.weight)
-        .sum();
+    let area = common::area(&space);
     let exact = std::f64::consts::PI * (b * b - a * a) / 4.0;
     assert!((area - exact).abs() < 1e-12 * exact, "{area} vs {exact}");
 

@@ -258,3 +258,14 @@ impl TaylorCase {
 pub fn vertical_load(p: &Problem) -> f64 {
     -iga_contact::post::applied_resultant(p).unwrap()[1]
 }
+
+/// The area of a patch by its own quadrature: the sum of the weights
+/// (which carry det J) over every element.
+pub fn area(space: &iga_contact::space::Space) -> f64 {
+    space
+        .elements
+        .iter()
+        .flat_map(|e| space.quadrature(e).unwrap())
+        .map(|q| q.weight)
+        .sum()
+}
